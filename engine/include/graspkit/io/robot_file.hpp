@@ -1,0 +1,25 @@
+#pragma once
+// Robot files (<robot type=...>), with the eigengrasp and virtual-contact files they name.
+
+#include <filesystem>
+#include <memory>
+
+#include "graspkit/io/model_cache.hpp"
+#include "graspkit/robot.hpp"
+
+namespace graspkit {
+
+// Throws graspkit::Error naming file, line and element. Robot types other than Robot and Hand
+// load as a generic Hand, with a warning, until a plugin provides them.
+std::shared_ptr<const RobotModel> loadRobotFile(const std::filesystem::path& file,
+                                                ModelCache* cache = nullptr);
+
+// An <EigenGrasps dimensions=N> file for a robot with `dof_count` DOFs.
+EigengraspSet loadEigengraspFile(const std::filesystem::path& file, int dof_count);
+
+// Identity eigengrasps: one per DOF, for a robot with no eigengrasp file.
+EigengraspSet identityEigengrasps(int dof_count);
+
+std::vector<VirtualContact> loadVirtualContactFile(const std::filesystem::path& file);
+
+}  // namespace graspkit

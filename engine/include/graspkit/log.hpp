@@ -1,0 +1,20 @@
+#pragma once
+// Warnings about input that loads but is suspicious (unknown tags, open meshes, fallbacks).
+// They go through one replaceable handler, so a host application or a test can capture them;
+// the default handler prints them through spdlog.
+
+#include <functional>
+#include <string>
+
+#include "graspkit/error.hpp"
+
+namespace graspkit {
+
+using WarningHandler = std::function<void(const SourceLocation& where, const std::string& message)>;
+
+// Installs `handler` (an empty one restores the default) and returns the previous handler.
+WarningHandler setWarningHandler(WarningHandler handler);
+
+void warn(const SourceLocation& where, const std::string& message);
+
+}  // namespace graspkit

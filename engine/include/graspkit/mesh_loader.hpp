@@ -1,0 +1,30 @@
+#pragma once
+// Reading geometry files into triangle meshes:
+//   Inventor (.iv) and VRML 2 (.wrl) through Coin3D (shape nodes tessellated, transforms applied),
+//   OFF through the reader in geometry/off_reader.cpp,
+//   STL, OBJ and PLY through assimp.
+
+#include <filesystem>
+#include <string_view>
+
+#include "graspkit/mesh.hpp"
+
+namespace graspkit {
+
+enum class MeshFormat { Auto, Inventor, Off, Ply, Stl, Obj };
+
+// Guesses the format from the file extension (case-insensitive); Inventor when unknown.
+MeshFormat meshFormatFromExtension(const std::filesystem::path& path);
+
+// Loads a geometry file. Throws graspkit::Error naming the file (and line where the parser
+// knows it) for missing, unreadable or malformed files, or files with no triangles.
+TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format = MeshFormat::Auto);
+
+// Parses OFF text already in memory; `file` names it in errors. Exposed for the fuzz target.
+TriangleMesh parseOff(std::string_view text, const std::string& file);
+
+// Coin3D must be initialised once per process before Inventor files are read; loadMesh does
+// it on first use. Thread-safe.
+void initInventorReader();
+
+}  // namespace graspkit

@@ -1,0 +1,82 @@
+#pragma once
+// A world: bodies (obstacles and graspable bodies), robots, connections between robots, and a
+// camera. Everything heavy (meshes, robot definitions) is shared and immutable, so clone() only
+// copies poses and DOF values; a planner runs one clone per thread.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graspkit/body.hpp"
+#include "graspkit/robot.hpp"
+
+namespace graspkit {
+
+// A child robot mounted at the end of a parent robot's chain: the child's base sits at the
+// parent chain's last link times `offset`. An optional mount piece is a body fixed to the
+// child's base.
+struct Connection {
+  int parentRobot = 0;
+  int parentChain = 0;
+  int childRobot = 0;
+  Transform offset = Transform::Identity();
+  std::string mountFilename;  // as written in the world file, empty when none
+  std::shared_ptr<const BodyModel> mount;
+};
+
+struct Camera {
+  Vector3 position = Vector3::Zero();
+  Quaternion orientation = Quaternion::Identity();
+  double focalDistance = 0.0;
+};
+
+// A robot placed in a world, with the file name it was loaded from (for saving).
+struct WorldRobot {
+  Robot robot;
+  std::filesystem::path filename;  // as written in the world file
+};
+
+class World {
+ public:
+  std::vector<Body>& bodies() { return bodies_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const Body* findBody(const std::string& name) const;
+
+  int robotCount() const { return static_cast<int>(robots_.size()); }
+  const Robot& robot(int index) const;
+  const WorldRobot& worldRobot(int index) const;
+  std::optional<int> findRobot(const std::string& name) const;
+
+  const std::vector<Connection>& connections() const { return connections_; }
+  const std::optional<Camera>& camera() const { return camera_; }
+  void setCamera(std::optional<Camera> camera) { camera_ = std::move(camera); }
+
+  // Adds a body; its name is made unique within the world. Returns its index.
+  int addBody(Body body);
+  int addRobot(Robot robot, std::filesystem::path filename = {});
+  // Mounts `child_robot` on the end of `parent_chain` of `parent_robot`. Throws graspkit::Error
+  // for bad indices, a robot mounted twice, or a cycle.
+  void connect(Connection connection);
+
+  // Moving a robot moves every robot mounted on it.
+  void setRobotPose(int robot, const Transform& pose);
+  void setDofValues(int robot, std::span<const double> values,
+                    LimitPolicy policy = LimitPolicy::Clamp);
+  // The world pose of a connection's mount piece (the child's base).
+  Transform mountPose(const Connection& connection) const;
+
+  World clone() const { return *this; }
+
+ private:
+  Robot& mutableRobot(int index);
+  void updateChildren(int parent);
+
+  std::vector<Body> bodies_;
+  std::vector<WorldRobot> robots_;
+  std::vector<Connection> connections_;
+  std::optional<Camera> camera_;
+};
+
+}  // namespace graspkit

@@ -1,0 +1,65 @@
+#include "graspkit/mesh_loader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <system_error>
+
+#include "geometry/mesh_readers.hpp"
+#include "graspkit/error.hpp"
+
+namespace graspkit {
+namespace {
+
+std::string lowerCaseExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  if (!ext.empty() && ext.front() == '.') ext.erase(0, 1);
+  std::ranges::transform(ext, ext.begin(),
+                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// A directory or a dangling path fails here with one clear message instead of a
+// format-specific one from deep inside Coin or assimp.
+void requireRegularFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) {
+    throw Error(detail::locationIn(path.string()), "file not found");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw Error(detail::locationIn(path.string()), "not a regular file");
+  }
+}
+
+}  // namespace
+
+MeshFormat meshFormatFromExtension(const std::filesystem::path& path) {
+  const std::string ext = lowerCaseExtension(path);
+  if (ext == "off") return MeshFormat::Off;
+  if (ext == "ply") return MeshFormat::Ply;
+  if (ext == "stl" || ext == "stlb") return MeshFormat::Stl;
+  if (ext == "obj") return MeshFormat::Obj;
+  // .iv and .wrl, and anything unknown: GraspIt! hands every geometry file it does not
+  // recognise to Coin, which also detects VRML 2 from the header line.
+  return MeshFormat::Inventor;
+}
+
+TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format) {
+  requireRegularFile(path);
+  if (format == MeshFormat::Auto) format = meshFormatFromExtension(path);
+  switch (format) {
+    case MeshFormat::Off:
+      return detail::readOff(path);
+    case MeshFormat::Ply:
+    case MeshFormat::Stl:
+    case MeshFormat::Obj:
+      return detail::readWithAssimp(path, format);
+    case MeshFormat::Auto:
+    case MeshFormat::Inventor:
+      break;
+  }
+  return detail::readInventor(path);
+}
+
+}  // namespace graspkit

@@ -1,0 +1,191 @@
+#include "graspkit/io/body_file.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include <fmt/format.h>
+
+#include "graspkit/log.hpp"
+#include "graspkit/mass_properties.hpp"
+#include "graspkit/mesh_loader.hpp"
+#include "xml.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+bool isGeometryFile(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
+         ext == ".stlb" || ext == ".obj";
+}
+
+MeshFormat formatFromType(const fs::path& file, const XMLElement& element, const fs::path& geometry) {
+  const char* type = element.Attribute("type");
+  if (!type) return meshFormatFromExtension(geometry);
+  const std::string_view t(type);
+  if (t == "Inventor") return MeshFormat::Inventor;
+  if (t == "off") return MeshFormat::Off;
+  if (t == "ply") return MeshFormat::Ply;
+  if (t == "stl") return MeshFormat::Stl;
+  if (t == "obj") return MeshFormat::Obj;
+  throw Error(xml::at(file, element),
+              fmt::format("unknown geometry type '{}' (Inventor, off, ply, stl or obj)", t));
+}
+
+double positive(const fs::path& file, const XMLElement& element) {
+  const double value = xml::number(file, element);
+  if (value <= 0) {
+    throw Error(xml::at(file, element), fmt::format("must be greater than 0, found {}", value));
+  }
+  return value;
+}
+
+Vector3 geometryScaling(const fs::path& file, const XMLElement& root) {
+  Vector3 scale = Vector3::Ones();
+  if (const auto* uniform = xml::child(root, "geometryScaling")) {
+    scale.setConstant(positive(file, *uniform));
+  }
+  const std::array<const char*, 3> axes = {"geometryScalingX", "geometryScalingY",
+                                           "geometryScalingZ"};
+  for (int i = 0; i < 3; ++i) {
+    if (const auto* axis = xml::child(root, axes[i])) scale[i] = positive(file, *axis);
+  }
+  return scale;
+}
+
+void readMaterial(const fs::path& file, const XMLElement& root, BodyModel& body) {
+  if (const auto* element = xml::child(root, "material")) {
+    const std::string name = xml::text(*element);
+    auto material = materialFromName(name);
+    if (!material) {
+      throw Error(xml::at(file, *element),
+                  fmt::format("unknown material '{}' (frictionless, glass, metal, plastic, wood, "
+                              "rubber or stone)",
+                              name));
+    }
+    body.material = *material;
+  }
+  if (const auto* element = xml::child(root, "youngs")) body.youngs = positive(file, *element);
+  const auto* normal = xml::child(root, "normalCompliance");
+  const auto* shear = xml::child(root, "shearCompliance");
+  if ((normal == nullptr) != (shear == nullptr)) {
+    throw Error(xml::at(file, normal ? *normal : *shear),
+                "normalCompliance and shearCompliance go together: give both or neither");
+  }
+  if (normal) {
+    body.normalCompliance = positive(file, *normal);
+    body.shearCompliance = positive(file, *shear);
+  }
+  if (const auto* element = xml::child(root, "useFlockOfBirds")) {
+    body.useFlockOfBirds = true;
+    body.flockOfBirdsNumber = static_cast<int>(xml::number(file, *element));
+  }
+}
+
+void readMassProperties(const fs::path& file, const XMLElement& root, BodyModel& body) {
+  if (const auto* element = xml::child(root, "mass")) {
+    body.mass = positive(file, *element);
+    body.massFromFile = true;
+  }
+  if (const auto* element = xml::child(root, "cog")) {
+    body.cog = xml::vector3(file, *element);
+    body.cogFromFile = true;
+  }
+  if (const auto* element = xml::child(root, "inertia_matrix")) {
+    const auto v = xml::numbers(file, *element, 9);
+    body.inertia = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(v.data());
+    body.inertiaFromFile = true;
+  }
+}
+
+// Fills in what the file left out, as GraspIt! does: the CoG defaults to the area-weighted
+// surface centroid, the inertia to the volume integrals about the volume centroid.
+void completeMassProperties(const fs::path& file, BodyModel& body) {
+  const TriangleMesh& mesh = *body.mesh;
+  if (!body.cogFromFile || !body.inertiaFromFile) {
+    const MassProperties props = computeMassProperties(mesh);
+    if (!body.cogFromFile) body.cog = surfaceCentroid(mesh);
+    if (!body.inertiaFromFile) {
+      if (props.valid) {
+        body.inertia = props.inertia;
+      } else {
+        // GraspIt!'s fallback meant a unit diagonal (it sets elements 0, 3, 6, a slip we do
+        // not copy): the body keeps a usable, symmetric inertia.
+        body.inertia = Matrix3::Identity();
+        warn(SourceLocation{file.string()},
+             fmt::format("mesh of '{}' is open or degenerate: inertia set to the identity "
+                         "(per unit mass)",
+                         body.name));
+      }
+    }
+  }
+  body.maxRadius = maxRadius(mesh, body.cog);
+}
+
+void readGeometry(const fs::path& file, const XMLElement& root, BodyModel& body) {
+  const auto* element = xml::child(root, "geometryFile");
+  if (!element) throw Error(xml::at(file, root), "missing <geometryFile>");
+  const std::string name = xml::text(*element);
+  if (name.empty()) throw Error(xml::at(file, *element), "empty geometry file name");
+  body.geometryFile = file.parent_path() / name;
+  body.geometryType = element->Attribute("type") ? element->Attribute("type") : "Inventor";
+  const MeshFormat format = formatFromType(file, *element, body.geometryFile);
+  TriangleMesh mesh;
+  try {
+    mesh = loadMesh(body.geometryFile, format);
+  } catch (const Error& e) {
+    throw Error(xml::at(file, *element), fmt::format("cannot load geometry: {}", e.what()));
+  }
+  body.geometryScaling = geometryScaling(file, root);
+  if (const auto* offset = xml::child(root, "geometryOffset")) {
+    const auto* t = xml::child(*offset, "transform");
+    if (!t) throw Error(xml::at(file, *offset), "expected a <transform> inside");
+    body.geometryOffset = xml::transform(file, *t);
+  }
+  // The offset sits outside the scale node, so it is in millimetres.
+  Eigen::Affine3d placement = Eigen::Affine3d(body.geometryOffset.matrix());
+  placement = placement * Eigen::Scaling(body.geometryScaling);
+  transformMesh(mesh, placement);
+  body.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
+std::shared_ptr<const BodyModel> readBodyXml(const fs::path& file) {
+  xml::Document doc(file);
+  const XMLElement& root = doc.root();
+  xml::warnUnknownChildren(file, root,
+                           {"material", "youngs", "normalCompliance", "shearCompliance",
+                            "useFlockOfBirds", "geometryFile", "geometryScaling",
+                            "geometryScalingX", "geometryScalingY", "geometryScalingZ",
+                            "geometryOffset", "mass", "cog", "inertia_matrix"});
+  auto body = std::make_shared<BodyModel>();
+  body->name = file.stem().string();
+  body->file = file;
+  readMaterial(file, root, *body);
+  readMassProperties(file, root, *body);
+  readGeometry(file, root, *body);
+  completeMassProperties(file, *body);
+  return body;
+}
+
+std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
+  auto body = std::make_shared<BodyModel>();
+  body->name = file.stem().string();
+  body->file = file;
+  body->geometryFile = file;
+  body->mesh = std::make_shared<const TriangleMesh>(loadMesh(file));
+  completeMassProperties(file, *body);
+  return body;
+}
+
+}  // namespace
+
+std::shared_ptr<const BodyModel> loadBodyFile(const fs::path& file, ModelCache* cache) {
+  auto load = [&]() { return isGeometryFile(file) ? readBareGeometry(file) : readBodyXml(file); };
+  return cache ? cache->body(file, load) : load();
+}
+
+}  // namespace graspkit

@@ -1,0 +1,96 @@
+#include <fmt/format.h>
+
+#include "graspkit/io/robot_file.hpp"
+#include "xml.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+// <DimVals d0=".." d3=".."/>: missing attributes are 0.
+Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dofs) {
+  const auto* dims = xml::child(element, "DimVals");
+  if (!dims) throw Error(xml::at(file, element), "missing <DimVals>");
+  Eigen::VectorXd values = Eigen::VectorXd::Zero(dofs);
+  for (auto* attr = dims->FirstAttribute(); attr; attr = attr->Next()) {
+    const std::string_view name = attr->Name();
+    int index = -1;
+    if (name.size() > 1 && name[0] == 'd') {
+      index = 0;
+      for (char c : name.substr(1)) index = std::isdigit(c) ? index * 10 + (c - '0') : -1 - dofs;
+    }
+    if (index < 0 || index >= dofs) {
+      throw Error(xml::at(file, *dims),
+                  fmt::format("attribute '{}' does not name one of the {} DOFs (d0..d{})", name,
+                              dofs, dofs - 1));
+    }
+    auto value = xml::toDouble(attr->Value());
+    if (!value) {
+      throw Error(xml::at(file, *dims), fmt::format("{}='{}' is not a number", name, attr->Value()));
+    }
+    values[index] = *value;
+  }
+  return values;
+}
+
+double eigenValue(const fs::path& file, const XMLElement& element) {
+  const auto* e = xml::child(element, "EigenValue");
+  if (!e || !e->Attribute("value")) return 0.5;
+  auto value = xml::toDouble(e->Attribute("value"));
+  if (!value) throw Error(xml::at(file, *e), "value is not a number");
+  return *value;
+}
+
+}  // namespace
+
+EigengraspSet identityEigengrasps(int dof_count) {
+  EigengraspSet set;
+  set.identity = true;
+  for (int d = 0; d < dof_count; ++d) {
+    Eigengrasp grasp;
+    grasp.direction = Eigen::VectorXd::Unit(dof_count, d);
+    set.grasps.push_back(std::move(grasp));
+  }
+  return set;
+}
+
+EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
+  if (file.extension() != ".xml") {
+    throw Error(SourceLocation{file.string()}, "eigengrasp files must be .xml");
+  }
+  xml::Document doc(file);
+  const XMLElement& root = doc.root();
+  const auto dims = xml::intAttribute(file, root, "dimensions");
+  if (!dims || *dims != dof_count) {
+    throw Error(xml::at(file, root),
+                fmt::format("dimensions is {}, the robot has {} DOFs",
+                            dims ? std::to_string(*dims) : "missing", dof_count));
+  }
+  EigengraspSet set;
+  for (const XMLElement* e : xml::children(root, "EG")) {
+    Eigengrasp grasp;
+    grasp.eigenValue = eigenValue(file, *e);
+    grasp.direction = dimVals(file, *e, dof_count);
+    const double norm = grasp.direction.norm();
+    if (norm < 1e-12) throw Error(xml::at(file, *e), "eigengrasp is all zeros");
+    grasp.direction /= norm;
+    if (const auto* limits = xml::child(*e, "Limits")) {
+      auto min = limits->Attribute("min") ? xml::toDouble(limits->Attribute("min")) : std::nullopt;
+      auto max = limits->Attribute("max") ? xml::toDouble(limits->Attribute("max")) : std::nullopt;
+      if (!min || !max || *min > *max) {
+        throw Error(xml::at(file, *limits), "expected numeric min <= max");
+      }
+      grasp.min = min;
+      grasp.max = max;
+    }
+    set.grasps.push_back(std::move(grasp));
+  }
+  if (set.grasps.empty()) throw Error(xml::at(file, root), "no <EG> eigengrasp");
+  if (const auto* origin = xml::child(root, "ORIGIN")) set.origin = dimVals(file, *origin, dof_count);
+  if (const auto* norm = xml::child(root, "NORM")) set.norm = dimVals(file, *norm, dof_count);
+  return set;
+}
+
+}  // namespace graspkit

@@ -1,0 +1,60 @@
+#include <fmt/format.h>
+
+#include "graspkit/io/robot_file.hpp"
+#include "xml.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+const XMLElement& required(const fs::path& file, const XMLElement& parent, const char* name) {
+  const auto* element = xml::child(parent, name);
+  if (!element) throw Error(xml::at(file, parent), fmt::format("missing <{}>", name));
+  return *element;
+}
+
+VirtualContact readContact(const fs::path& file, const XMLElement& element) {
+  VirtualContact contact;
+  contact.finger = xml::integer(file, required(file, element, "finger_number"));
+  contact.link = xml::integer(file, required(file, element, "link_number"));
+  if (const auto* edges = xml::child(element, "friction_edges")) {
+    for (const XMLElement* edge : xml::children(*edges, "friction_edge")) {
+      const auto v = xml::numbers(file, *edge, 6);
+      contact.frictionEdges.push_back(Eigen::Matrix<double, 6, 1>(v.data()));
+    }
+  }
+  if (const auto* count = xml::child(element, "num_friction_edges")) {
+    const int expected = xml::integer(file, *count);
+    if (expected != static_cast<int>(contact.frictionEdges.size())) {
+      throw Error(xml::at(file, *count),
+                  fmt::format("says {} friction edges, <friction_edges> has {}", expected,
+                              contact.frictionEdges.size()));
+    }
+  }
+  contact.location = xml::vector3(file, required(file, element, "location"));
+  const auto q = xml::numbers(file, required(file, element, "rotation"), 4);  // w x y z
+  contact.rotation = Quaternion(q[0], q[1], q[2], q[3]);
+  if (contact.rotation.norm() < 1e-9) {
+    throw Error(xml::at(file, *xml::child(element, "rotation")), "zero quaternion");
+  }
+  contact.rotation.normalize();
+  if (const auto* t = xml::child(element, "translation")) contact.translation = xml::vector3(file, *t);
+  contact.normal = xml::vector3(file, required(file, element, "normal"));
+  contact.sCof = xml::optionalNumber(file, element, "sCof", 0.0);
+  return contact;
+}
+
+}  // namespace
+
+std::vector<VirtualContact> loadVirtualContactFile(const fs::path& file) {
+  xml::Document doc(file);
+  std::vector<VirtualContact> contacts;
+  for (const XMLElement* e : xml::children(doc.root(), "virtual_contact")) {
+    contacts.push_back(readContact(file, *e));
+  }
+  return contacts;
+}
+
+}  // namespace graspkit

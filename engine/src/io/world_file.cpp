@@ -1,0 +1,350 @@
+#include "graspkit/io/world_file.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/log.hpp"
+#include "xml.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+const XMLElement& required(const fs::path& file, const XMLElement& parent, const char* name) {
+  const auto* element = xml::child(parent, name);
+  if (!element) throw Error(xml::at(file, parent), fmt::format("missing <{}>", name));
+  return *element;
+}
+
+class WorldReader {
+ public:
+  WorldReader(const fs::path& file, const LoadOptions& options, ModelCache* cache)
+      : file_(file), roots_(searchRoots(file, options)), cache_(cache) {}
+
+  World read() {
+    xml::Document doc(file_);
+    const XMLElement& root = doc.root();
+    if (std::string_view(root.Name()) != "world") {
+      throw Error(xml::at(file_, root), "the root element of a world file must be <world>");
+    }
+    xml::warnUnknownChildren(file_, root,
+                             {"obstacle", "graspableBody", "robot", "connection", "camera"});
+    World world;
+    for (auto* e = root.FirstChildElement(); e; e = e->NextSiblingElement()) {
+      const std::string_view name = e->Name();
+      if (name == "obstacle") readBody(*e, BodyKind::Obstacle, world);
+      if (name == "graspableBody") readBody(*e, BodyKind::Graspable, world);
+      if (name == "robot") readRobot(*e, world);
+    }
+    for (const XMLElement* e : xml::children(root, "connection")) readConnection(*e, world);
+    if (const auto* e = xml::child(root, "camera")) readCamera(*e, world);
+    return world;
+  }
+
+ private:
+  fs::path resolve(const XMLElement& element) {
+    const std::string name = xml::text(element);
+    if (name.empty()) throw Error(xml::at(file_, element), "empty file name");
+    if (fs::path(name).is_absolute()) {
+      if (fs::exists(name)) return name;
+    } else {
+      for (const fs::path& root : roots_) {
+        if (fs::exists(root / name)) return root / name;
+      }
+    }
+    std::string tried;
+    for (const fs::path& root : roots_) tried += "\n  " + root.string();
+    throw Error(xml::at(file_, element),
+                fmt::format("'{}' not found; searched (set --root or GRASPKIT_ROOT):{}", name, tried));
+  }
+
+  template <typename Load>
+  auto located(const XMLElement& element, const Load& load) -> decltype(load()) {
+    try {
+      return load();
+    } catch (const Error& e) {
+      throw Error(xml::at(file_, element), e.what());
+    }
+  }
+
+  Transform pose(const XMLElement& parent) {
+    const auto* t = xml::child(parent, "transform");
+    return t ? xml::transform(file_, *t) : Transform::Identity();
+  }
+
+  void readBody(const XMLElement& element, BodyKind kind, World& world) {
+    if (xml::child(element, "body") && !xml::child(element, "filename")) {
+      throw Error(xml::at(file_, element), "inline <body> definitions are not supported");
+    }
+    const XMLElement& filename = required(file_, element, "filename");
+    const fs::path path = resolve(filename);
+    Body body;
+    body.model = located(filename, [&] { return loadBodyFile(path, cache_); });
+    body.kind = kind;
+    body.filename = xml::text(filename);
+    body.setPose(pose(element));
+    world.addBody(std::move(body));
+  }
+
+  void readRobot(const XMLElement& element, World& world) {
+    const XMLElement& filename = required(file_, element, "filename");
+    const fs::path path = resolve(filename);
+    Robot robot(located(filename, [&] { return loadRobotFile(path, cache_); }));
+    if (const auto* values = xml::child(element, "dofValues")) readDofValues(*values, robot);
+    robot.setPose(pose(element));  // GraspIt! applies the transform after the DOF values
+    world.addRobot(std::move(robot), xml::text(filename));
+  }
+
+  // Rigid and compliant DOFs: one value. Breakaway DOFs: the value, then per coupled joint
+  // `0`, or `1 <value>` for a joint that broke away at that DOF value.
+  void readDofValues(const XMLElement& element, Robot& robot) {
+    const std::string content = xml::text(element);
+    const auto tokens = xml::tokens(content);
+    std::size_t next = 0;
+    auto take = [&](const char* what) {
+      if (next >= tokens.size()) {
+        throw Error(xml::at(file_, element),
+                    fmt::format("too few values for robot '{}' ({} DOFs): ran out reading {}",
+                                robot.name(), robot.dofCount(), what));
+      }
+      auto value = xml::toDouble(tokens[next]);
+      if (!value) {
+        throw Error(xml::at(file_, element),
+                    fmt::format("'{}' is not a finite number", tokens[next]));
+      }
+      ++next;
+      return *value;
+    };
+    const RobotModel& model = robot.model();
+    std::vector<double> values(model.dofs.size());
+    std::vector<std::pair<int, BreakawayState>> broken;
+    for (std::size_t d = 0; d < model.dofs.size(); ++d) {
+      values[d] = take("a DOF value");
+      if (model.dofs[d].type != DofType::Breakaway) continue;
+      for (int joint : model.dofs[d].joints) {
+        const double flag = take("a breakaway flag");
+        if (flag != 0.0 && flag != 1.0) {
+          throw Error(xml::at(file_, element),
+                      fmt::format("breakaway flag of DOF {} is {}, expected 0 or 1", d, flag));
+        }
+        if (flag == 1.0) broken.emplace_back(joint, BreakawayState{true, take("a breakaway value")});
+      }
+    }
+    if (next != tokens.size()) {
+      throw Error(xml::at(file_, element),
+                  fmt::format("{} values given, robot '{}' ({} DOFs) takes {}", tokens.size(),
+                              robot.name(), robot.dofCount(), next));
+    }
+    robot.setDofValues(values, LimitPolicy::Ignore);
+    for (const auto& [joint, state] : broken) robot.setBreakaway(joint, state);
+  }
+
+  void readConnection(const XMLElement& element, World& world) {
+    Connection connection;
+    connection.parentRobot = xml::integer(file_, required(file_, element, "parentRobot"));
+    connection.parentChain = xml::integer(file_, required(file_, element, "parentChain"));
+    connection.childRobot = xml::integer(file_, required(file_, element, "childRobot"));
+    if (const auto* mount = xml::child(element, "mountFilename")) {
+      connection.mountFilename = xml::text(*mount);
+      const fs::path path = resolve(*mount);
+      connection.mount = located(*mount, [&] { return loadBodyFile(path, cache_); });
+    }
+    connection.offset = pose(element);
+    located(element, [&] {
+      world.connect(std::move(connection));
+      return 0;
+    });
+  }
+
+  void readCamera(const XMLElement& element, World& world) {
+    Camera camera;
+    camera.position = xml::vector3(file_, required(file_, element, "position"));
+    // Passed straight to Coin by GraspIt!, so x y z w, unlike every other quaternion.
+    const auto q = xml::numbers(file_, required(file_, element, "orientation"), 4);
+    camera.orientation = Quaternion(q[3], q[0], q[1], q[2]);
+    camera.focalDistance = xml::optionalNumber(file_, element, "focalDistance", 0.0);
+    world.setCamera(camera);
+  }
+
+  fs::path file_;
+  std::vector<fs::path> roots_;
+  ModelCache* cache_;
+};
+
+// Shortest text that reads back to the same double, with an explicit sign as GraspIt! writes.
+std::string signedNumber(double value) {
+  if (value == 0.0) value = 0.0;  // no "-0"
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  std::string text(buffer, result.ptr);
+  return value >= 0 ? "+" + text : text;
+}
+
+std::string relativeName(const fs::path& file, const fs::path& root) {
+  if (!root.empty()) {
+    std::error_code ec;
+    const fs::path rel = fs::relative(fs::weakly_canonical(file), fs::weakly_canonical(root), ec);
+    if (!ec && !rel.empty() && *rel.begin() != "..") return rel.generic_string();
+  }
+  return fs::absolute(file).generic_string();
+}
+
+void writeTransform(std::ostream& out, const Transform& transform, const char* indent) {
+  out << indent << "<transform>\n"
+      << indent << "    <fullTransform>" << formatFullTransform(transform) << "</fullTransform>\n"
+      << indent << "</transform>\n";
+}
+
+std::string worldText(const World& world, const SaveOptions& options) {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" ?>\n<world>\n";
+  for (const Body& body : world.bodies()) {
+    const char* tag = body.kind == BodyKind::Graspable ? "graspableBody" : "obstacle";
+    const std::string name = body.filename.empty() ? relativeName(body.model->file, options.root)
+                                                   : body.filename.generic_string();
+    out << "    <" << tag << ">\n        <filename>" << name << "</filename>\n";
+    writeTransform(out, body.pose, "        ");
+    out << "    </" << tag << ">\n";
+  }
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const WorldRobot& entry = world.worldRobot(r);
+    const std::string name = entry.filename.empty()
+                                 ? relativeName(entry.robot.model().file, options.root)
+                                 : entry.filename.generic_string();
+    out << "    <robot>\n        <filename>" << name << "</filename>\n"
+        << "        <dofValues>" << formatDofValues(entry.robot) << "</dofValues>\n";
+    writeTransform(out, entry.robot.pose(), "        ");
+    out << "    </robot>\n";
+  }
+  for (const Connection& c : world.connections()) {
+    out << "    <connection>\n"
+        << "        <parentRobot>" << c.parentRobot << "</parentRobot>\n"
+        << "        <parentChain>" << c.parentChain << "</parentChain>\n"
+        << "        <childRobot>" << c.childRobot << "</childRobot>\n";
+    if (!c.mountFilename.empty()) {
+      out << "        <mountFilename>" << c.mountFilename << "</mountFilename>\n";
+    }
+    writeTransform(out, c.offset, "        ");
+    out << "    </connection>\n";
+  }
+  if (const auto& camera = world.camera()) {
+    const Quaternion& q = camera->orientation;
+    out << "    <camera>\n        <position>" << signedNumber(camera->position.x()) << " "
+        << signedNumber(camera->position.y()) << " " << signedNumber(camera->position.z())
+        << "</position>\n        <orientation>" << signedNumber(q.x()) << " " << signedNumber(q.y())
+        << " " << signedNumber(q.z()) << " " << signedNumber(q.w()) << "</orientation>\n"
+        << "        <focalDistance>" << signedNumber(camera->focalDistance)
+        << "</focalDistance>\n    </camera>\n";
+  }
+  out << "</world>\n";
+  return out.str();
+}
+
+std::string rootName(const fs::path& file) {
+  xml::Document doc(file);
+  return doc.root().Name();
+}
+
+bool isGeometryFile(const fs::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
+         ext == ".obj";
+}
+
+}  // namespace
+
+std::vector<fs::path> searchRoots(const fs::path& world_file, const LoadOptions& options) {
+  std::vector<fs::path> roots = options.roots;
+  if (options.useEnvironment) {
+    for (const char* variable : {"GRASPKIT_ROOT", "GRASPIT"}) {
+      if (const char* value = std::getenv(variable); value && *value) roots.emplace_back(value);
+    }
+  }
+  fs::path dir = fs::absolute(world_file).parent_path();
+  while (true) {
+    roots.push_back(dir);
+    if (!dir.has_parent_path() || dir.parent_path() == dir) break;
+    dir = dir.parent_path();
+  }
+  return roots;
+}
+
+World loadWorldFile(const fs::path& file, const LoadOptions& options, ModelCache* cache) {
+  return WorldReader(file, options, cache).read();
+}
+
+World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* cache) {
+  const std::string root = isGeometryFile(file) ? "" : rootName(file);
+  if (root == "world") return loadWorldFile(file, options, cache);
+  World world;
+  if (root == "robot") {
+    world.addRobot(Robot(loadRobotFile(file, cache)), file);
+  } else {
+    Body body;
+    body.model = loadBodyFile(file, cache);
+    body.kind = BodyKind::Graspable;
+    body.filename = file;
+    body.setPose(Transform::Identity());
+    world.addBody(std::move(body));
+  }
+  return world;
+}
+
+std::string formatFullTransform(const Transform& transform) {
+  Quaternion q(transform.linear());
+  q.normalize();
+  const Vector3& t = transform.translation();
+  return fmt::format("({} {} {} {})[{} {} {}]", signedNumber(q.w()), signedNumber(q.x()),
+                     signedNumber(q.y()), signedNumber(q.z()), signedNumber(t.x()),
+                     signedNumber(t.y()), signedNumber(t.z()));
+}
+
+std::string formatDofValues(const Robot& robot) {
+  std::string out;
+  const RobotModel& model = robot.model();
+  for (std::size_t d = 0; d < model.dofs.size(); ++d) {
+    if (!out.empty()) out += ' ';
+    out += signedNumber(robot.dofValues()[d]);
+    if (model.dofs[d].type != DofType::Breakaway) continue;
+    for (int joint : model.dofs[d].joints) {
+      const BreakawayState& state = robot.breakaway()[joint];
+      out += state.engaged ? " 1 " + signedNumber(state.value) : " 0";
+    }
+  }
+  return out;
+}
+
+void saveWorldFile(const World& world, const fs::path& file, const SaveOptions& options) {
+  const std::string text = worldText(world, options);
+  const fs::path temporary = file.string() + fmt::format(".tmp{}", ::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(SourceLocation{file.string()}, "cannot open a temporary file to save");
+    out << text;
+    out.flush();
+    if (!out) {
+      out.close();
+      fs::remove(temporary);
+      throw Error(SourceLocation{file.string()}, "writing the world failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temporary, file, ec);
+  if (ec) {
+    fs::remove(temporary);
+    throw Error(SourceLocation{file.string()}, "cannot replace the file: " + ec.message());
+  }
+}
+
+}  // namespace graspkit

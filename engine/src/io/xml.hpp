@@ -1,0 +1,78 @@
+#pragma once
+// Internal helpers for reading GraspIt! XML: located errors, strict locale-independent numbers,
+// direct-children lookups (GraspIt! scans only direct children; the first match wins), and the
+// <transform> grammar.
+
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "graspkit/error.hpp"
+#include "graspkit/transform.hpp"
+
+namespace graspkit::xml {
+
+// An XML file parsed into memory, remembering its name for error messages.
+class Document {
+ public:
+  explicit Document(const std::filesystem::path& file);
+  const tinyxml2::XMLElement& root() const { return *root_; }
+  const std::filesystem::path& file() const { return file_; }
+  std::string displayName() const { return file_.string(); }
+
+ private:
+  std::filesystem::path file_;
+  tinyxml2::XMLDocument doc_;
+  const tinyxml2::XMLElement* root_ = nullptr;
+};
+
+// The location of `element` in `file`.
+SourceLocation at(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
+
+// The first direct child named `name`, or null.
+const tinyxml2::XMLElement* child(const tinyxml2::XMLElement& parent, const char* name);
+std::vector<const tinyxml2::XMLElement*> children(const tinyxml2::XMLElement& parent,
+                                                  const char* name);
+
+// The trimmed text of an element ("" when it has none).
+std::string text(const tinyxml2::XMLElement& element);
+
+// Warns about direct children whose names are not in `known`.
+void warnUnknownChildren(const std::filesystem::path& file, const tinyxml2::XMLElement& parent,
+                         std::initializer_list<std::string_view> known);
+
+// Numbers. A leading '+' is accepted (GraspIt! writes it); NaN and infinities are rejected.
+std::optional<double> toDouble(std::string_view token);
+std::vector<std::string_view> tokens(std::string_view text);
+
+// Reads the element's text as exactly `count` numbers (any count when count < 0).
+std::vector<double> numbers(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
+                            int count);
+double number(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
+Vector3 vector3(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
+int integer(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
+
+// A required child's number; throws naming the parent when the child is missing.
+double requiredNumber(const std::filesystem::path& file, const tinyxml2::XMLElement& parent,
+                      const char* name);
+double optionalNumber(const std::filesystem::path& file, const tinyxml2::XMLElement& parent,
+                      const char* name, double fallback);
+
+// An attribute's integer value; throws naming the element when it is not an integer.
+std::optional<int> intAttribute(const std::filesystem::path& file,
+                                const tinyxml2::XMLElement& element, const char* name);
+
+// The <transform> grammar: children compose in document order, each in the frame the previous
+// ones leave. translation "x y z"; rotation "deg axis"; rotationMatrix (9 numbers, column-major);
+// fullTransform "(w x y z)[x y z]". Unknown children count as the identity, with a warning.
+Transform transform(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
+Transform parseFullTransform(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
+                             std::string_view text);
+
+}  // namespace graspkit::xml
