@@ -65,16 +65,21 @@ void installCoinHandlers() {
   SoDebugError::setHandlerCallback(onCoinMessage, nullptr);
 }
 
-// Merges vertices with bit-identical coordinates, which is how shared corners arrive from Coin
-// (the same float through the same matrix). An open-addressing table over one flat array keeps
-// it allocation-free per vertex.
+// A world-space corner as the bit patterns of its float coordinates: equality is exact, and
+// -0 and +0 (the same point) are made the same by adding +0.
+using CornerKey = std::array<std::uint32_t, 3>;
+
+CornerKey cornerKey(const SbVec3f& p) {
+  return {std::bit_cast<std::uint32_t>(p[0] + 0.0f), std::bit_cast<std::uint32_t>(p[1] + 0.0f),
+          std::bit_cast<std::uint32_t>(p[2] + 0.0f)};
+}
+
+// Merges bit-identical corners, which is how shared corners arrive from Coin (the same float
+// through the same matrix). An open-addressing table over flat arrays keeps it free of
+// per-vertex allocations.
 class VertexWelder {
  public:
-  std::uint32_t add(const SbVec3f& p) {
-    // -0 and +0 are the same point; adding +0 turns the former into the latter.
-    const Key key = {std::bit_cast<std::uint32_t>(p[0] + 0.0f),
-                     std::bit_cast<std::uint32_t>(p[1] + 0.0f),
-                     std::bit_cast<std::uint32_t>(p[2] + 0.0f)};
+  std::uint32_t add(const CornerKey& key) {
     if (2 * (keys_.size() + 1) > slots_.size()) grow();
     std::size_t slot = hash(key) & (slots_.size() - 1);
     while (slots_[slot] != kEmpty) {
@@ -89,7 +94,7 @@ class VertexWelder {
   std::vector<Vector3> vertices() const {
     std::vector<Vector3> out;
     out.reserve(keys_.size());
-    for (const Key& key : keys_) {
+    for (const CornerKey& key : keys_) {
       out.emplace_back(std::bit_cast<float>(key[0]), std::bit_cast<float>(key[1]),
                        std::bit_cast<float>(key[2]));
     }
@@ -97,10 +102,9 @@ class VertexWelder {
   }
 
  private:
-  using Key = std::array<std::uint32_t, 3>;
   static constexpr std::uint32_t kEmpty = 0xffffffffu;
 
-  static std::size_t hash(const Key& key) {
+  static std::size_t hash(const CornerKey& key) {
     std::uint64_t h = key[0];
     h = h * 0x9e3779b97f4a7c15ull ^ key[1];
     h = h * 0x9e3779b97f4a7c15ull ^ key[2];
@@ -117,7 +121,7 @@ class VertexWelder {
     }
   }
 
-  std::vector<Key> keys_;
+  std::vector<CornerKey> keys_;
   std::vector<std::uint32_t> slots_;
 };
 
@@ -137,17 +141,22 @@ void onTriangle(void* data, SoCallbackAction* action, const SoPrimitiveVertex* v
                 const SoPrimitiveVertex* v2, const SoPrimitiveVertex* v3) {
   auto& collector = *static_cast<TriangleCollector*>(data);
   const SbMatrix& model = action->getModelMatrix();
-  std::array<std::uint32_t, 3> triangle;
-  const SoPrimitiveVertex* corners[3] = {v1, v2, v3};
+  std::array<CornerKey, 3> corners;
+  const SoPrimitiveVertex* sources[3] = {v1, v2, v3};
   for (int i = 0; i < 3; ++i) {
     SbVec3f world;
-    model.multVecMatrix(corners[i]->getPoint(), world);
+    model.multVecMatrix(sources[i]->getPoint(), world);
     if (!std::isfinite(world[0]) || !std::isfinite(world[1]) || !std::isfinite(world[2])) {
       collector.non_finite = true;
       return;
     }
-    triangle[i] = collector.welder.add(world);
+    corners[i] = cornerKey(world);
   }
+  // Two coincident corners make a triangle with no area that bounds nothing. GraspIt! leaves
+  // these out too: its triangle counts for glass.iv and Robonaut are Coin's minus exactly these.
+  if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) return;
+  std::array<std::uint32_t, 3> triangle;
+  for (int i = 0; i < 3; ++i) triangle[i] = collector.welder.add(corners[i]);
   // A mirroring transform turns Coin's counter-clockwise shapes inside out; undo that so the
   // mesh keeps outward winding and a positive volume.
   if (determinant3x3(model) < 0) std::swap(triangle[1], triangle[2]);

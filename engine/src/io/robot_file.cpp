@@ -17,11 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-// Types GraspIt! registers beyond the generic Robot and Hand; plugins provide them.
-constexpr std::array<std::string_view, 11> kPluginRobotTypes = {
-    "Puma560", "Barrett",  "Robonaut", "Pr2Gripper", "Pr2Gripper2010", "M7",
-    "M7Tool",  "HumanHand", "Shadow",  "McGrip",     "RobotIQ"};
-
 // The coupling of one joint to its DOF: joint value = ratio * dof value, DH variable = joint
 // value + offset.
 struct Coupling {
@@ -61,7 +56,13 @@ Coupling parseCoupling(const fs::path& file, const XMLElement& element, int dof_
     coupling.offset = *offset;
     rest = {};
   }
-  if (!rest.empty()) throw fail(fmt::format("has trailing text '{}'", rest));
+  if (!rest.empty()) {
+    // GraspIt! stops reading here and ignores the rest (BarrettBH8_280 has 'd1-2.46').
+    warn(xml::at(file, element),
+         fmt::format("expression '{}': trailing '{}' ignored as GraspIt! does; write a negative "
+                     "offset as '+-2.46'",
+                     expression, rest));
+  }
   if (coupling.dof < 0 || coupling.dof >= dof_count) {
     throw Error(xml::at(file, element),
                 fmt::format("expression '{}' names dof {}, robot has {}", expression, coupling.dof,
@@ -233,11 +234,9 @@ class RobotReader {
     robot.dbName = root.Attribute("DBName") ? root.Attribute("DBName") : robot.type;
     robot.isHand = robot.type != "Robot";
     if (robot.type != "Robot" && robot.type != "Hand") {
-      const bool known = std::find(kPluginRobotTypes.begin(), kPluginRobotTypes.end(),
-                                   robot.type) != kPluginRobotTypes.end();
+      // Special robot types (Barrett, Puma560, ...) come from plugins; the kernel knows none.
       warn(xml::at(file_, root),
-           fmt::format("robot type '{}' {}; loaded as a generic Hand", robot.type,
-                       known ? "comes from a plugin that is not loaded" : "is unknown"));
+           fmt::format("no plugin provides robot type '{}'; loaded as a generic Hand", robot.type));
     }
   }
 
@@ -407,7 +406,11 @@ class RobotReader {
     if (const auto* e = xml::child(root, "cyberGlove")) robot.cyberGloveFile = xml::text(*e);
     if (const auto* e = xml::child(root, "flockOfBirds")) {
       FlockOfBirds birds;
-      birds.number = xml::intAttribute(file_, *e, "number").value_or(0);
+      try {
+        birds.number = xml::intAttribute(file_, *e, "number").value_or(0);
+      } catch (const Error& bad) {
+        warn(xml::at(file_, *e), std::string(bad.message()) + "; sensor number 0 used");
+      }
       if (const auto* t = xml::child(*e, "transform")) birds.offset = xml::transform(file_, *t);
       robot.flockOfBirds = birds;
     }
