@@ -1,1 +1,40 @@
-int main() { return 0; }
+// graspkit: the command-line program. Each subcommand lives in its own file (*_command.cpp)
+// and registers itself here.
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "commands.hpp"
+#include "graspkit/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"graspkit: a grasp simulator that reads GraspIt! files"};
+  app.require_subcommand(1);
+  bool quiet = false;
+  bool verbose = false;
+  app.add_flag("-q,--quiet", quiet, "Print errors only");
+  app.add_flag("-v,--verbose", verbose, "Print debugging detail");
+
+  graspkit::cli::InfoOptions info;
+  graspkit::cli::addInfoCommand(app, info);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  spdlog::set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::warn);
+  spdlog::set_pattern("graspkit: %l: %v");
+  try {
+    if (app.got_subcommand("info")) return graspkit::cli::runInfo(info, std::cout);
+  } catch (const graspkit::Error& e) {
+    std::cerr << "graspkit: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "graspkit: internal error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

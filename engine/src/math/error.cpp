@@ -10,7 +10,8 @@ std::string SourceLocation::str() const {
 }
 
 Error::Error(SourceLocation where, const std::string& message)
-    : std::runtime_error(where.str() + ": " + message),
+    : std::runtime_error(where.file.empty() && where.element.empty() ? message
+                                                                     : where.str() + ": " + message),
       where_(std::move(where)),
       message_(message) {}
 
