@@ -111,7 +111,9 @@ std::string linkXml(const std::string& type) {
   return "    <link dynamicJointType=\"" + type + "\">link.xml</link>\n";
 }
 
-std::string chainXml(const std::string& body) { return "  <chain>\n" + body + "  </chain>\n"; }
+std::string chainXml(const std::string& body) {
+  return "  <chain>\n" + body + "  </chain>\n";
+}
 
 // Writes a robot file with the given DOFs and chains; returns its path.
 fs::path writeRobot(const std::string& name, const std::string& dofs, const std::string& chains) {
@@ -167,8 +169,8 @@ TEST(DenavitHartenberg, MatchesExplicitProductForRandomParameters) {
   std::uniform_real_distribution<double> length(-200.0, 200.0);
   for (int i = 0; i < 200; ++i) {
     const double theta = angle(rng), d = length(rng), a = length(rng), alpha = angle(rng);
-    SCOPED_TRACE(::testing::Message() << "theta " << theta << " d " << d << " a " << a
-                                      << " alpha " << alpha);
+    SCOPED_TRACE(::testing::Message()
+                 << "theta " << theta << " d " << d << " a " << a << " alpha " << alpha);
     EXPECT_TRUE(transformNear(denavitHartenberg(theta, d, a, alpha),
                               dhReference(theta, d, a, alpha), 1e-12));
   }
@@ -187,7 +189,7 @@ TEST(DenavitHartenberg, SingleParameters) {
 TEST(Kinematics, PlanarTwoLinkArmInCode) {
   const double a1 = 100, a2 = 50;
   Robot robot(planarArmModel({a1, a2}));
-  const double angles[][2] = {{0, 0},     {0.3, -0.7}, {M_PI / 2, M_PI / 2},
+  const double angles[][2] = {{0, 0},      {0.3, -0.7}, {M_PI / 2, M_PI / 2},
                               {-2.0, 1.1}, {3.0, -3.0}, {-M_PI / 3, 2.5}};
   for (const auto& q : angles) {
     SCOPED_TRACE(::testing::Message() << "q = " << q[0] << ", " << q[1]);
@@ -204,11 +206,10 @@ TEST(Kinematics, PlanarTwoLinkArmInCode) {
 }
 
 TEST(Kinematics, PlanarTwoLinkArmFromFile) {
-  const fs::path file =
-      writeRobot("Planar", dofXml() + dofXml(),
-                 chainXml(jointXml("Revolute", "d0", "0", 100, 0, -180, 180) +
-                          jointXml("Revolute", "d1", "0", 50, 0, -180, 180) + linkXml("Revolute") +
-                          linkXml("Revolute")));
+  const fs::path file = writeRobot("Planar", dofXml() + dofXml(),
+                                   chainXml(jointXml("Revolute", "d0", "0", 100, 0, -180, 180) +
+                                            jointXml("Revolute", "d1", "0", 50, 0, -180, 180) +
+                                            linkXml("Revolute") + linkXml("Revolute")));
   Robot robot(loadRobotFile(file));
   ASSERT_EQ(robot.dofCount(), 2);
   EXPECT_NEAR(robot.model().dofs[0].min, -M_PI, 1e-12);
@@ -219,11 +220,11 @@ TEST(Kinematics, PlanarTwoLinkArmFromFile) {
     robot.setDofValues(std::vector<double>{q[0], q[1]});
     const Vector3 tip(100 * std::cos(q[0]) + 50 * std::cos(q[0] + q[1]),
                       100 * std::sin(q[0]) + 50 * std::sin(q[0] + q[1]), 0);
-    EXPECT_TRUE(transformNear(robot.linkPose(0, 1), translation(tip.x(), tip.y(), 0) *
-                                                        rotZ(q[0] + q[1])));
-    EXPECT_TRUE(transformNear(robot.linkPose(0, 0),
-                              translation(100 * std::cos(q[0]), 100 * std::sin(q[0]), 0) *
-                                  rotZ(q[0])));
+    EXPECT_TRUE(
+        transformNear(robot.linkPose(0, 1), translation(tip.x(), tip.y(), 0) * rotZ(q[0] + q[1])));
+    EXPECT_TRUE(
+        transformNear(robot.linkPose(0, 0),
+                      translation(100 * std::cos(q[0]), 100 * std::sin(q[0]), 0) * rotZ(q[0])));
   }
   // The robot's base pose carries the whole chain.
   const Transform base = translation(1, 2, 3) * rotZ(0.5);
@@ -234,9 +235,9 @@ TEST(Kinematics, PlanarTwoLinkArmFromFile) {
 
 TEST(Kinematics, PrismaticJointTranslatesAlongZWithOffset) {
   // theta 90 degrees and a = 3 mm are constant; d = DOF value + 5 mm.
-  const fs::path file = writeRobot(
-      "Slider", dofXml(),
-      chainXml(jointXml("Prismatic", "90", "d0+5", 3, 0, 0, 50) + linkXml("Prismatic")));
+  const fs::path file =
+      writeRobot("Slider", dofXml(),
+                 chainXml(jointXml("Prismatic", "90", "d0+5", 3, 0, 0, 50) + linkXml("Prismatic")));
   Robot robot(loadRobotFile(file));
   // Prismatic limits are millimetres, not degrees.
   EXPECT_DOUBLE_EQ(robot.model().dofs[0].min, 0.0);
@@ -293,9 +294,9 @@ TEST_F(CouplingTest, JointValueIsRatioTimesDofAndThetaAddsOffset) {
   EXPECT_DOUBLE_EQ(q[2], -0.1);
   // The DH theta is joint value + 40 degrees; a = 10 mm along the rotated x.
   const double theta = 0.6 * 0.333333333 + 40 * kDeg;
-  EXPECT_TRUE(transformNear(robot.linkPose(0, 0),
-                            translation(10 * std::cos(theta), 10 * std::sin(theta), 0) *
-                                rotZ(theta)));
+  EXPECT_TRUE(
+      transformNear(robot.linkPose(0, 0),
+                    translation(10 * std::cos(theta), 10 * std::sin(theta), 0) * rotZ(theta)));
   EXPECT_TRUE(transformNear(robot.linkPose(2, 0),
                             translation(10 * std::cos(-0.1), 10 * std::sin(-0.1), 0) * rotZ(-0.1)));
 }
@@ -360,19 +361,19 @@ TEST(Kinematics, LinksConsumeJointsByType) {
   // Chain 0: Revolute (joint 0), Universal (joints 1, 2).
   // Chain 1: Fixed (no joint: the chain base), Revolute (joint 0), Fixed (still joint 0),
   //          Ball (joints 1, 2, 3).
-  const fs::path file = writeRobot(
-      "Consume", dofXml(),
-      chainXml("    <transform><translation>0 0 7</translation></transform>\n" +
-               jointXml("Revolute", "d0", "0", 20, 90, -180, 180) +
-               jointXml("Revolute", "d0*0.5", "5", 10, -90, -180, 180) +
-               jointXml("Revolute", "d0+30", "0", 15, 0, -180, 180) + linkXml("Revolute") +
-               linkXml("Universal")) +
-          chainXml("    <transform><translation>30 0 0</translation></transform>\n" +
-                   jointXml("Revolute", "d0", "2", 4, 90, -180, 180) +
-                   jointXml("Revolute", "d0", "0", 6, -90, -180, 180) +
-                   jointXml("Revolute", "d0", "3", 0, 90, -180, 180) +
-                   jointXml("Revolute", "d0", "0", 8, 0, -180, 180) + linkXml("Fixed") +
-                   linkXml("Revolute") + linkXml("Fixed") + linkXml("Ball")));
+  const fs::path file =
+      writeRobot("Consume", dofXml(),
+                 chainXml("    <transform><translation>0 0 7</translation></transform>\n" +
+                          jointXml("Revolute", "d0", "0", 20, 90, -180, 180) +
+                          jointXml("Revolute", "d0*0.5", "5", 10, -90, -180, 180) +
+                          jointXml("Revolute", "d0+30", "0", 15, 0, -180, 180) +
+                          linkXml("Revolute") + linkXml("Universal")) +
+                     chainXml("    <transform><translation>30 0 0</translation></transform>\n" +
+                              jointXml("Revolute", "d0", "2", 4, 90, -180, 180) +
+                              jointXml("Revolute", "d0", "0", 6, -90, -180, 180) +
+                              jointXml("Revolute", "d0", "3", 0, 90, -180, 180) +
+                              jointXml("Revolute", "d0", "0", 8, 0, -180, 180) + linkXml("Fixed") +
+                              linkXml("Revolute") + linkXml("Fixed") + linkXml("Ball")));
   auto model = loadRobotFile(file);
   ASSERT_EQ(model->chains[0].links.size(), 2u);
   ASSERT_EQ(model->chains[1].links.size(), 4u);
@@ -418,17 +419,17 @@ TEST(TransformGrammar, ChainTransformsComposeInDocumentOrder) {
     return chainXml("    <transform>" + transform + "</transform>\n" +
                     jointXml("Revolute", "d0", "0", 0, 0, -180, 180) + linkXml("Revolute"));
   };
-  const fs::path file = writeRobot(
-      "Grammar", dofXml(),
-      chain("<translation>10 0 0</translation><rotation>90 z</rotation>") +
-          chain("<rotation>90 z</rotation><translation>10 0 0</translation>") +
-          chain("<rotationMatrix>0 1 0 -1 0 0 0 0 1</rotationMatrix>") +
-          chain("<fullTransform>(+1 0 0 0)[+1 +2 +3]</fullTransform>") +
-          chain("<fullTransform>(0.7071067811865476 0 0 0.7071067811865476)[0 0 0]"
-                "</fullTransform>") +
-          chain("<rotation>90 x</rotation><translation>0 0 5</translation>") +
-          chain("<rotation>-90 Y</rotation><translation>1 0 0</translation>"
-                "<translation>0 2 0</translation>"));
+  const fs::path file =
+      writeRobot("Grammar", dofXml(),
+                 chain("<translation>10 0 0</translation><rotation>90 z</rotation>") +
+                     chain("<rotation>90 z</rotation><translation>10 0 0</translation>") +
+                     chain("<rotationMatrix>0 1 0 -1 0 0 0 0 1</rotationMatrix>") +
+                     chain("<fullTransform>(+1 0 0 0)[+1 +2 +3]</fullTransform>") +
+                     chain("<fullTransform>(0.7071067811865476 0 0 0.7071067811865476)[0 0 0]"
+                           "</fullTransform>") +
+                     chain("<rotation>90 x</rotation><translation>0 0 5</translation>") +
+                     chain("<rotation>-90 y</rotation><translation>1 0 0</translation>"
+                           "<translation>0 2 0</translation>"));
   auto model = loadRobotFile(file);
   ASSERT_EQ(model->chains.size(), 7u);
   Transform rz = Transform::Identity();
@@ -449,11 +450,10 @@ TEST(TransformGrammar, ChainTransformsComposeInDocumentOrder) {
   EXPECT_TRUE(transformNear(
       model->chains[5].base,
       translation(0, -5, 0) * Transform(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX())), 1e-12));
-  // Ry(-90) carries x onto +z; the axis letter is case-insensitive.
-  EXPECT_TRUE(transformNear(model->chains[6].base,
-                            translation(0, 2, 1) *
-                                Transform(Eigen::AngleAxisd(-M_PI / 2, Vector3::UnitY())),
-                            1e-12));
+  // Ry(-90) carries x onto +z; two translations add up in the rotated frame.
+  EXPECT_TRUE(transformNear(
+      model->chains[6].base,
+      translation(0, 2, 1) * Transform(Eigen::AngleAxisd(-M_PI / 2, Vector3::UnitY())), 1e-12));
 
   // With every joint at 0 and a = d = alpha = 0, the link sits at the chain base.
   Robot robot(model);
@@ -609,8 +609,7 @@ TEST_F(WorldTest, ChildFollowsParentChainEnd) {
 
   const std::vector<double> q = {0.4, -1.1};
   world_.setDofValues(0, q);
-  EXPECT_TRUE(
-      transformNear(world_.robot(1).pose(), world_.robot(0).chainEndPose(0) * offset_));
+  EXPECT_TRUE(transformNear(world_.robot(1).pose(), world_.robot(0).chainEndPose(0) * offset_));
   EXPECT_TRUE(transformNear(world_.robot(1).pose(), armTip(q[0], q[1]) * offset_));
   EXPECT_TRUE(transformNear(world_.mountPose(world_.connections()[0]), world_.robot(1).pose()));
 
@@ -627,8 +626,8 @@ TEST_F(WorldTest, GrandchildFollowsThroughTwoMounts) {
   world_.setDofValues(1, std::vector<double>{0.5});
   world_.setDofValues(0, std::vector<double>{-0.3, 0.9});
   const Transform child = armTip(-0.3, 0.9) * offset_;
-  const Transform childTip = child * translation(20 * std::cos(0.5), 20 * std::sin(0.5), 0) *
-                             rotZ(0.5);
+  const Transform childTip =
+      child * translation(20 * std::cos(0.5), 20 * std::sin(0.5), 0) * rotZ(0.5);
   EXPECT_TRUE(transformNear(world_.robot(1).pose(), child));
   EXPECT_TRUE(transformNear(world_.robot(2).pose(), childTip * offset2));
 }
@@ -676,8 +675,8 @@ TEST_F(WorldTest, CloneIsIndependentAndSharesModels) {
   EXPECT_TRUE(transformNear(world_.robot(0).pose(), Transform::Identity(), 0.0));
   EXPECT_TRUE(transformNear(world_.robot(1).pose(), child_before, 0.0));
   EXPECT_TRUE(transformNear(world_.bodies()[0].pose, Transform::Identity(), 0.0));
-  EXPECT_TRUE(transformNear(copy.robot(1).pose(), translation(5, 5, 5) * armTip(-1.0, 1.5) *
-                                                      offset_));
+  EXPECT_TRUE(
+      transformNear(copy.robot(1).pose(), translation(5, 5, 5) * armTip(-1.0, 1.5) * offset_));
 
   // Heavy parts are shared, not copied.
   EXPECT_EQ(copy.robot(0).modelPtr().get(), world_.robot(0).modelPtr().get());

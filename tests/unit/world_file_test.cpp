@@ -76,12 +76,11 @@ fs::path writeGripper(const fs::path& root) {
   writeBody(dir / "iv", "link", "rubber");
   const std::string link = "    <link dynamicJointType=\"Revolute\">link.xml</link>\n";
   const fs::path file = dir / "Gripper.xml";
-  writeText(file,
-            "<?xml version=\"1.0\" ?>\n<robot type=\"Hand\">\n  <palm>link.xml</palm>\n" +
-                dofXml('r') + dofXml('b', "<breakAwayTorque>0.5</breakAwayTorque>") +
-                "  <chain>\n" + jointXml("d0", -90, 90) + link + "  </chain>\n  <chain>\n" +
-                jointXml("d1", 0, 90) + jointXml("d1*0.5", 0, 90) + link + link +
-                "  </chain>\n</robot>\n");
+  writeText(file, "<?xml version=\"1.0\" ?>\n<robot type=\"Hand\">\n  <palm>link.xml</palm>\n" +
+                      dofXml('r') + dofXml('b', "<breakAwayTorque>0.5</breakAwayTorque>") +
+                      "  <chain>\n" + jointXml("d0", -90, 90) + link + "  </chain>\n  <chain>\n" +
+                      jointXml("d1", 0, 90) + jointXml("d1*0.5", 0, 90) + link + link +
+                      "  </chain>\n</robot>\n");
   return file;
 }
 
@@ -161,8 +160,8 @@ TEST(FullTransform, RandomTransformsParseBack) {
     const std::string text = formatFullTransform(poses.back());
     // By hand: w first, then the translation.
     EXPECT_LT(transformError(parseByHand(text), poses.back()), 1e-12) << text;
-    world += "  <obstacle><filename>objects/cube.xml</filename><transform><fullTransform>" +
-             text + "</fullTransform></transform></obstacle>\n";
+    world += "  <obstacle><filename>objects/cube.xml</filename><transform><fullTransform>" + text +
+             "</fullTransform></transform></obstacle>\n";
   }
   world += "</world>\n";
   writeText(root / "poses.xml", world);
@@ -398,7 +397,7 @@ TEST(WorldFile, FilenameResolutionOrder) {
   };
   LoadOptions with_root = hermetic();
   with_root.roots = {extra_root};
-  EXPECT_EQ(material(with_root), Material::Metal);  // LoadOptions.roots first
+  EXPECT_EQ(material(with_root), Material::Metal);   // LoadOptions.roots first
   EXPECT_EQ(material(hermetic()), Material::Glass);  // then the world file's folder
   fs::remove_all(worlds / "objects");
   EXPECT_EQ(material(hermetic()), Material::Stone);  // then its parent

@@ -16,7 +16,9 @@ struct MassProperties {
 
 // Volume, centroid and inertia of the solid bounded by `mesh`. Never returns NaN: a mesh whose
 // integrals are unusable (volume < 1e-5 mm^3, NaN, centroid more than 500 mm out) comes back
-// with valid = false and zero values.
+// with valid = false and zero values. "Open" is judged geometrically, by the divergence theorem
+// (a hole or a missing face fails), not by isClosed: GraspIt!'s models are often closed only
+// geometrically (unwelded seams, T-junctions) and GraspIt! integrates them.
 MassProperties computeMassProperties(const TriangleMesh& mesh);
 
 // Area-weighted centroid of the surface (GraspIt!'s default CoG).

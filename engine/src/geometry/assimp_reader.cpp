@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <string>
 
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -16,8 +18,41 @@
 namespace graspkit::detail {
 namespace {
 
-constexpr unsigned kPostProcess = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
+// Normals, colours and texture coordinates are dropped first: STL repeats every corner with
+// its facet's normal, and assimp only joins vertices that agree in every component.
+constexpr unsigned kPostProcess = aiProcess_RemoveComponent | aiProcess_Triangulate |
+                                  aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+                                  aiProcess_ValidateDataStructure;
+constexpr int kRemovedComponents =
+    aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+    aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+    aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS;
+
+// assimp picks its importer by extension; the hint makes the caller's format win, so binary STL
+// saved as .stlb (whose bytes carry no signature to sniff) loads too.
+const char* formatHint(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Stl:
+      return "stl";
+    case MeshFormat::Obj:
+      return "obj";
+    case MeshFormat::Ply:
+      return "ply";
+    default:
+      return "";
+  }
+}
+
+std::string readBytes(const std::filesystem::path& path, const SourceLocation& where) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(where, "cannot open the file for reading");
+  std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
+  in.seekg(0);
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
+    throw Error(where, "read error");
+  }
+  return bytes;
+}
 
 void appendMesh(const aiMesh& source, const SourceLocation& where, TriangleMesh& mesh) {
   const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
@@ -47,12 +82,15 @@ void appendMesh(const aiMesh& source, const SourceLocation& where, TriangleMesh&
 
 }  // namespace
 
-TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat /*format*/) {
-  // assimp picks its importer from the extension and falls back to sniffing the content, which
-  // covers the formats loadMesh routes here (including binary STL saved as .stlb).
+TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat format) {
   const SourceLocation where = locationIn(path.string());
+  // Read from memory: the geometry is all we keep, so an OBJ's material library is not needed.
+  const std::string bytes = readBytes(path, where);
+  if (bytes.empty()) throw Error(where, "the file is empty");
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path.string(), kPostProcess);
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, kRemovedComponents);
+  const aiScene* scene =
+      importer.ReadFileFromMemory(bytes.data(), bytes.size(), kPostProcess, formatHint(format));
   if (scene == nullptr)
     throw Error(where, std::string("cannot read: ") + importer.GetErrorString());
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {

@@ -3,26 +3,40 @@
 // us each triangle, which we move into the scene's root frame with the model matrix in effect
 // (so Transform, Scale and friends apply) and weld into an indexed mesh. GraspIt! collects its
 // triangles the same way, so triangle counts match it one for one.
+//
+// Coin trusts its input and crashes or hangs on some malformed files, so nothing reaches it
+// unchecked: the text is checked for what its recursive parser cannot take (SceneTextCheck),
+// and every node is checked just before Coin traverses it (beforeNode, inventor_shape_check).
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
+#include <Inventor/elements/SoNormalBindingElement.h>
+#include <Inventor/elements/SoNormalElement.h>
 #include <Inventor/errors/SoDebugError.h>
 #include <Inventor/errors/SoError.h>
 #include <Inventor/errors/SoReadError.h>
 #include <Inventor/nodes/SoSeparator.h>
 #include <Inventor/nodes/SoShape.h>
+#include <Inventor/nodes/SoVertexShape.h>
 
+#include "geometry/inventor_shape_check.hpp"
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/log.hpp"
@@ -31,6 +45,10 @@
 namespace graspkit {
 namespace {
 
+using detail::checkShape;
+using detail::pruneAppearance;
+using detail::ShapeVerdict;
+
 // Coin keeps global parser state and its error handlers are process-wide, so one file is read
 // at a time. Loads are short (milliseconds) and usually happen once per model.
 std::mutex coin_mutex;
@@ -38,11 +56,16 @@ std::mutex coin_mutex;
 // Messages Coin posts while a file is being read; null when no read is in progress.
 std::vector<std::string>* coin_messages = nullptr;
 
+// Texture images are never used (the traversal skips textures) and Coin is built without an
+// image library here, so its complaints about them are noise.
+bool isAboutTextureImages(const std::string& message) {
+  return message.find("texture file") != std::string::npos ||
+         message.find("SbImage::readFile") != std::string::npos;
+}
+
 void onCoinMessage(const SoError* error, void* /*data*/) {
   std::string message = error->getDebugString().getString();
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) {
-    message.pop_back();
-  }
+  if (isAboutTextureImages(message)) return;
   if (coin_messages != nullptr) {
     coin_messages->push_back(std::move(message));
   } else {
@@ -163,37 +186,230 @@ void onTriangle(void* data, SoCallbackAction* action, const SoPrimitiveVertex* v
   collector.triangles.push_back(triangle);
 }
 
-std::string joined(const std::vector<std::string>& messages) {
-  std::string out;
-  for (const std::string& message : messages) {
-    if (!out.empty()) out += "; ";
-    out += message;
+// Coin's messages end with "Occurred at line N in <file>"; the line goes into the error's
+// location and the rest of the message is kept.
+void appendCoinMessage(const std::string& message, std::string& text, int& line) {
+  std::string_view view = message;
+  if (const std::size_t at = view.find("Occurred at line"); at != std::string_view::npos) {
+    if (line == 0) {
+      std::string_view number = view.substr(at + 16);
+      number.remove_prefix(std::min(number.find_first_not_of(' '), number.size()));
+      std::from_chars(number.data(), number.data() + number.size(), line);
+    }
+    view = view.substr(0, at);
   }
-  return out;
+  while (!view.empty() && std::isspace(static_cast<unsigned char>(view.back()))) {
+    view.remove_suffix(1);
+  }
+  if (!text.empty()) text += "; ";
+  text += view;
 }
 
-// Reads the scene graph; throws with Coin's own diagnostics (which carry the line) on failure.
-SoSeparator* readScene(const std::filesystem::path& path, std::vector<std::string>& messages) {
-  SoInput input;
-  if (!input.openFile(path.c_str())) {
-    throw Error(detail::locationIn(path.string()), "cannot open the file: " + joined(messages));
+SourceLocation coinLocation(const std::string& file, const std::vector<std::string>& messages,
+                            std::string& text) {
+  int line = 0;
+  for (const std::string& message : messages) appendCoinMessage(message, text, line);
+  return detail::locationIn(file, line);
+}
+
+// Coin's parser recurses once per nesting level and its traversal once per graph level, and a
+// USE inside its own DEF makes a cycle; these bounds keep both within any thread's stack and
+// a scene that multiplies itself through USE within a bounded time. GraspIt!'s models nest
+// about ten levels deep and visit a few thousand nodes.
+constexpr int kMaxNesting = 1000;
+constexpr std::int64_t kMaxNodeVisits = 1'000'000;
+
+// ASCII only, without the locale lookups of <cctype>: this runs on every byte of large files.
+bool isWordStart(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool isDigit(char c) {
+  return c >= '0' && c <= '9';
+}
+bool isPlain(char c) {
+  return isDigit(c) || c == ' ' || c == '.' || c == ',' || c == '-' || c == '+' || c == '\t' ||
+         c == '\r';
+}
+
+// Checks what Coin cannot be trusted with before it sees the text: binary files, nesting deep
+// enough to overflow its recursive parser, and File and Inline nodes, which make it read other
+// files that this check never sees.
+class SceneTextCheck {
+ public:
+  SceneTextCheck(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+
+  void run() {
+    checkHeader();
+    while (pos_ < text_.size()) step();
   }
+
+ private:
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(detail::locationIn(file_, line_), message);
+  }
+
+  void checkHeader() {
+    const std::string_view first_line = text_.substr(0, text_.find('\n'));
+    if (!first_line.starts_with("#Inventor") && !first_line.starts_with("#VRML")) {
+      fail("not an Inventor or VRML file: the first line must start with #Inventor or #VRML");
+    }
+    if (first_line.find("binary") != std::string_view::npos) {
+      fail("binary Inventor files are not supported; convert the file to ASCII");
+    }
+  }
+
+  void step() {
+    const char c = text_[pos_];
+    if (c == '\n') {
+      ++line_;
+      ++pos_;
+    } else if (c == '#') {
+      pos_ = std::min(text_.find('\n', pos_), text_.size());
+    } else if (c == '"') {
+      skipString();
+    } else if (c == '{' || c == '[') {
+      if (++depth_ > kMaxNesting) fail(fmt::format("nesting deeper than {} levels", kMaxNesting));
+      ++pos_;
+    } else if (c == '}' || c == ']') {
+      depth_ = std::max(0, depth_ - 1);
+      ++pos_;
+    } else if (isWordStart(c)) {
+      checkWord();
+    } else {
+      // Numbers, blanks and separators: the bulk of a mesh file, skipped in a tight loop.
+      do {
+        ++pos_;
+      } while (pos_ < text_.size() && isPlain(text_[pos_]));
+    }
+  }
+
+  void skipString() {
+    for (++pos_; pos_ < text_.size() && text_[pos_] != '"'; ++pos_) {
+      if (text_[pos_] == '\\') ++pos_;
+      if (pos_ < text_.size() && text_[pos_] == '\n') ++line_;
+    }
+    ++pos_;
+  }
+
+  void checkWord() {
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && (isWordStart(text_[pos_]) || isDigit(text_[pos_]))) ++pos_;
+    const std::string_view word = text_.substr(start, pos_ - start);
+    if (word != "File" && word != "Inline") return;
+    const std::size_t next = text_.find_first_not_of(" \t\r\n", pos_);
+    if (next != std::string_view::npos && text_[next] == '{') {
+      fail(fmt::format("{} nodes, which read other files, are not supported", word));
+    }
+  }
+
+  std::string_view text_;
+  const std::string& file_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+  int depth_ = 0;
+};
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(detail::locationIn(path.string()), "cannot open the file for reading");
+  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
+  in.seekg(0);
+  if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) {
+    throw Error(detail::locationIn(path.string()), "read error");
+  }
+  return text;
+}
+
+// Parses the scene; Coin's diagnostics (with their line) become the error on failure.
+SoSeparator* readScene(std::string_view text, const std::string& file,
+                       const std::vector<std::string>& messages) {
+  SoInput input;
+  input.setBuffer(text.data(), text.size());
   SoSeparator* root = SoDB::readAll(&input);
-  input.closeFile();
   if (root == nullptr) {
-    const std::string reason = messages.empty() ? "not an Inventor or VRML file" : joined(messages);
-    throw Error(detail::locationIn(path.string()), "cannot parse the scene: " + reason);
+    std::string reason;
+    const SourceLocation where = coinLocation(file, messages, reason);
+    throw Error(where,
+                "cannot parse the scene: " + (reason.empty() ? "Coin gave no reason" : reason));
   }
   return root;
 }
 
-TriangleCollector collectTriangles(SoSeparator* root) {
+// State for the pre/post callbacks that guard Coin's traversal.
+struct TraversalGuard {
+  std::int64_t visits = 0;
+  int depth = 0;
+  std::string problem;  // set when the traversal was aborted
+};
+
+// Without normals in the state Coin generates smooth ones for every Inventor vertex shape, which
+// costs as much as tessellating; one overall normal stands in, since only positions are kept.
+void skipNormalGeneration(SoCallbackAction& action, SoNode& shape) {
+  if (!shape.isOfType(SoVertexShape::getClassTypeId())) return;
+  static const SbVec3f kAnyNormal(0.0f, 0.0f, 1.0f);
+  SoNormalElement::set(action.getState(), &shape, 1, &kAnyNormal, TRUE);
+  SoNormalBindingElement::set(action.getState(), &shape, SoNormalBindingElement::OVERALL);
+}
+
+SoCallbackAction::Response beforeNode(void* data, SoCallbackAction* action, const SoNode* node) {
+  auto& guard = *static_cast<TraversalGuard*>(data);
+  if (++guard.visits > kMaxNodeVisits) {
+    guard.problem = fmt::format("the scene graph expands to more than {} nodes", kMaxNodeVisits);
+    return SoCallbackAction::ABORT;
+  }
+  if (++guard.depth > kMaxNesting) {
+    constexpr const char* kTooDeep =
+        "the scene graph is deeper than {} levels; a USE inside its own DEF makes a cycle";
+    guard.problem = fmt::format(kTooDeep, kMaxNesting);
+    return SoCallbackAction::ABORT;
+  }
+  // The scene is ours and discarded after loading, so the checks may edit it.
+  SoNode& editable = const_cast<SoNode&>(*node);
+  if (pruneAppearance(editable)) return SoCallbackAction::PRUNE;
+  if (!node->isOfType(SoShape::getClassTypeId())) return SoCallbackAction::CONTINUE;
+  const ShapeVerdict verdict = checkShape(*action, editable);
+  switch (verdict.kind) {
+    case ShapeVerdict::Traverse:
+      skipNormalGeneration(*action, editable);
+      return SoCallbackAction::CONTINUE;
+    case ShapeVerdict::Skip:
+      return SoCallbackAction::PRUNE;
+    case ShapeVerdict::Reject:
+      break;
+  }
+  guard.problem = verdict.problem;
+  return SoCallbackAction::ABORT;
+}
+
+SoCallbackAction::Response afterNode(void* data, SoCallbackAction* /*action*/,
+                                     const SoNode* /*node*/) {
+  --static_cast<TraversalGuard*>(data)->depth;
+  return SoCallbackAction::CONTINUE;
+}
+
+// Holds a reference to a scene for as long as it is traversed; the last unref frees it.
+class SceneReference {
+ public:
+  explicit SceneReference(SoSeparator* root) : root_(root) { root_->ref(); }
+  ~SceneReference() { root_->unref(); }
+  SceneReference(const SceneReference&) = delete;
+  SceneReference& operator=(const SceneReference&) = delete;
+  SoSeparator* get() const { return root_; }
+
+ private:
+  SoSeparator* root_;
+};
+
+TriangleCollector collectTriangles(SoSeparator* root, const std::string& file) {
+  const SceneReference scene(root);
   TriangleCollector collector;
+  TraversalGuard guard;
   SoCallbackAction action;
+  action.addPreCallback(SoNode::getClassTypeId(), beforeNode, &guard);
+  action.addPostCallback(SoNode::getClassTypeId(), afterNode, &guard);
   action.addTriangleCallback(SoShape::getClassTypeId(), onTriangle, &collector);
-  root->ref();
-  action.apply(root);
-  root->unref();
+  action.apply(scene.get());
+  if (!guard.problem.empty()) throw Error(detail::locationIn(file), guard.problem);
   return collector;
 }
 
@@ -211,18 +427,25 @@ namespace detail {
 
 TriangleMesh readInventor(const std::filesystem::path& path) {
   initInventorReader();
+  const std::string file = path.string();
+  const std::string text = readText(path);
+  SceneTextCheck(text, file).run();
   std::vector<std::string> messages;
   TriangleCollector collector;
   {
     std::lock_guard lock(coin_mutex);
     CoinMessageCapture capture(messages);
-    collector = collectTriangles(readScene(path, messages));
+    collector = collectTriangles(readScene(text, file, messages), file);
   }
-  const SourceLocation where = locationIn(path.string());
+  const SourceLocation where = locationIn(file);
   if (collector.non_finite) throw Error(where, "a vertex has a non-finite coordinate");
   if (collector.triangles.empty()) throw Error(where, "the scene holds no triangles");
   // Coin accepted the file; whatever it said along the way is worth a look, not a failure.
-  for (const std::string& message : messages) warn(where, message);
+  for (const std::string& message : messages) {
+    std::string text_only;
+    const SourceLocation at = coinLocation(file, {message}, text_only);
+    warn(at, text_only);
+  }
   TriangleMesh mesh;
   mesh.vertices = collector.welder.vertices();
   mesh.triangles = std::move(collector.triangles);

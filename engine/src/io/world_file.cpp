@@ -301,9 +301,32 @@ World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* 
   return world;
 }
 
+namespace {
+
+// The quaternion a save writes for `rotation`. q -> R -> q is not exact in floating point, so
+// writing q's shortest round-trip digits drifts in the last places on every save -> load ->
+// save. Components are rounded to 14 decimals (rotation error < 1e-13), which absorbs that
+// drift, and the rounding is repeated through the load path (makeTransform) until reading the
+// text back gives the same text again.
+Quaternion savedRotation(const Matrix3& rotation) {
+  auto rounded = [](Quaternion q) {
+    q.normalize();
+    for (int i = 0; i < 4; ++i) q.coeffs()[i] = std::round(q.coeffs()[i] * 1e14) / 1e14;
+    return q;
+  };
+  Quaternion q = rounded(Quaternion(rotation));
+  for (int i = 0; i < 8; ++i) {
+    const Quaternion next = rounded(Quaternion(makeTransform(Vector3::Zero(), q).linear()));
+    if (next.coeffs() == q.coeffs()) break;
+    q = next;
+  }
+  return q;
+}
+
+}  // namespace
+
 std::string formatFullTransform(const Transform& transform) {
-  Quaternion q(transform.linear());
-  q.normalize();
+  const Quaternion q = savedRotation(transform.linear());
   const Vector3& t = transform.translation();
   return fmt::format("({} {} {} {})[{} {} {}]", signedNumber(q.w()), signedNumber(q.x()),
                      signedNumber(q.y()), signedNumber(q.z()), signedNumber(t.x()),

@@ -17,8 +17,16 @@ Document::Document(const std::filesystem::path& file) : file_(file) {
   }
   if (doc_.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
     const int line = doc_.ErrorLineNum();
-    throw Error(SourceLocation{file.string(), line},
-                fmt::format("malformed XML: {}", doc_.ErrorStr() ? doc_.ErrorStr() : "parse error"));
+    const std::string detail = doc_.ErrorStr() ? doc_.ErrorStr() : "parse error";
+    // For an unclosed or mismatched tag tinyxml2 names the element ("XMLElement name=dof") and
+    // gives its line: report it as the location's element.
+    std::string element;
+    if (const auto name = detail.find("XMLElement name="); name != std::string::npos) {
+      element = detail.substr(name + 16);
+      element = element.substr(0, element.find_first_of(" \t\r\n"));
+    }
+    throw Error(SourceLocation{file.string(), line, element},
+                fmt::format("malformed XML: {}", detail));
   }
   root_ = doc_.RootElement();
   if (!root_) throw Error(SourceLocation{file.string()}, "the file has no root element");
@@ -155,12 +163,13 @@ std::optional<int> intAttribute(const std::filesystem::path& file,
 namespace {
 
 Transform rotationAbout(const std::filesystem::path& file, const tinyxml2::XMLElement& element) {
-  const auto parts = tokens(text(element));
+  const std::string content = text(element);  // `parts` views into it: keep it alive
+  const auto parts = tokens(content);
   const auto degrees = parts.size() == 2 ? toDouble(parts[0]) : std::nullopt;
   if (!degrees || parts[1].size() != 1 || std::string_view("xyzXYZ").find(parts[1][0]) ==
                                               std::string_view::npos) {
     throw Error(at(file, element),
-                fmt::format("expected '<degrees> <x|y|z>', found '{}'", text(element)));
+                fmt::format("expected '<degrees> <x|y|z>', found '{}'", content));
   }
   const int axis = std::tolower(static_cast<unsigned char>(parts[1][0])) - 'x';
   Transform t = Transform::Identity();

@@ -1,0 +1,141 @@
+// The bad-input corpus (tests/badinput/corpus): every file must fail to load with a
+// graspkit::Error (never a crash, never another exception type) whose message names the file,
+// the line and the element where the input is wrong, and says why.
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "graspkit/error.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "test_paths.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path corpus() {
+  return test::sourceDir() / "tests" / "badinput" / "corpus";
+}
+
+struct BadInput {
+  const char* name;     // test name
+  const char* path;     // the file loaded, relative to the corpus
+  const char* culprit;  // the file name the message must blame (may be a file `path` names)
+  int line;             // where the bad element is in `culprit`
+  const char* element;  // the bad element's name
+  const char* reason;   // a key phrase of the reason
+};
+
+void PrintTo(const BadInput& input, std::ostream* os) {
+  *os << input.path;
+}
+
+const BadInput kCorpus[] = {
+    {"MalformedXml", "robots/malformed_unclosed.xml", "malformed_unclosed.xml", 5, "dof",
+     "malformed XML"},
+    {"MissingGeometryFile", "bodies/missing_geometry.xml", "missing_geometry.xml", 5,
+     "geometryFile", "cannot load geometry"},
+    {"UnknownMaterial", "bodies/unknown_material.xml", "unknown_material.xml", 5, "material",
+     "unknown material 'unobtainium'"},
+    {"DofIndexOutOfRange", "robots/dof_index_out_of_range.xml", "dof_index_out_of_range.xml", 13,
+     "theta", "expression 'd9+5' names dof 9, robot has 4"},
+    {"NanInTranslation", "robots/nan_translation.xml", "nan_translation.xml", 9, "translation",
+     "'nan' is not a finite number"},
+    {"LinkCountMismatch", "robots/link_count_mismatch.xml", "link_count_mismatch.xml", 6, "chain",
+     "has 3 joints but its 2 links use 2"},
+    {"MissingRobotFile", "worlds/missing_robot.xml", "missing_robot.xml", 4, "filename",
+     "'robots/no_such_robot.xml' not found"},
+    {"WrongDofValueCount", "worlds/wrong_dof_count.xml", "wrong_dof_count.xml", 5, "dofValues",
+     "3 values given, robot 'good_hand' (2 DOFs) takes 2"},
+    {"NoPalm", "robots/no_palm.xml", "no_palm.xml", 3, "robot", "missing <palm>"},
+    {"UnknownJointType", "robots/unknown_joint_type.xml", "unknown_joint_type.xml", 8, "joint",
+     "joint type 'Spherical' is not Revolute or Prismatic"},
+    {"NegativeSpringStiffness", "robots/negative_spring.xml", "negative_spring.xml", 14,
+     "springStiffness", "must not be negative"},
+    {"YoungsNotPositive", "bodies/youngs_not_positive.xml", "youngs_not_positive.xml", 5, "youngs",
+     "must be greater than 0"},
+    {"NormalComplianceWithoutShear", "bodies/normal_without_shear.xml", "normal_without_shear.xml",
+     6, "normalCompliance", "give both or neither"},
+    {"BadRotationAxis", "robots/bad_rotation_axis.xml", "bad_rotation_axis.xml", 9, "rotation",
+     "found '90 w'"},
+    {"FullTransformThreeQuaternionNumbers", "worlds/full_transform_three_numbers.xml",
+     "full_transform_three_numbers.xml", 6, "fullTransform", "expected '(w x y z)[x y z]'"},
+    {"EigengraspWrongDimensions", "robots/eigengrasp_wrong_dims.xml", "eigen_wrong_dims.xml", 2,
+     "EigenGrasps", "dimensions is 3, the robot has 2"},
+    {"ConnectionToMissingChain", "worlds/bad_connection_chain.xml", "bad_connection_chain.xml", 9,
+     "connection", "has 1 chains, connection names chain 3"},
+};
+
+// Files in the corpus that are not bad inputs themselves: valid parts the bad files use.
+const std::set<std::string> kSupportFiles = {"robots/good_hand.xml", "robots/iv/cube.xml",
+                                             "robots/iv/cube.off",   "robots/eigen_wrong_dims.xml",
+                                             "bodies/good_cube.xml", "bodies/cube.off"};
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, FailsWithLocatedError) {
+  const BadInput& input = GetParam();
+  const fs::path file = corpus() / input.path;
+  ASSERT_TRUE(fs::is_regular_file(file)) << file;
+  LoadOptions options;
+  options.useEnvironment = false;
+  try {
+    loadAnyFile(file, options);
+    FAIL() << input.path << " loaded without an error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    SCOPED_TRACE(message);
+    // "<file>:<line>: <element>" is how SourceLocation reads: file, line and element together.
+    const std::string where =
+        std::string(input.culprit) + ":" + std::to_string(input.line) + ": <" + input.element + ">";
+    EXPECT_NE(message.find(where), std::string::npos) << "expected location: " << where;
+    EXPECT_NE(message.find(input.reason), std::string::npos) << "expected reason: " << input.reason;
+    // A located error names a real place, never the placeholder for an unknown file.
+    EXPECT_EQ(message.find("<input>"), std::string::npos);
+  } catch (const std::exception& e) {
+    FAIL() << "not a graspkit::Error: " << e.what();
+  } catch (...) {
+    FAIL() << "an exception that is not a std::exception";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, BadInputTest, ::testing::ValuesIn(kCorpus),
+                         [](const ::testing::TestParamInfo<BadInput>& info) {
+                           return std::string(info.param.name);
+                         });
+
+TEST(BadInputCorpus, EveryCorpusFileIsTested) {
+  std::set<std::string> tested(kSupportFiles);
+  for (const BadInput& input : kCorpus) tested.insert(input.path);
+  for (const auto& entry : fs::recursive_directory_iterator(corpus())) {
+    if (!entry.is_regular_file()) continue;
+    const std::string relative = fs::relative(entry.path(), corpus()).generic_string();
+    EXPECT_TRUE(tested.count(relative)) << relative << " is in the corpus but not in the table";
+  }
+  for (const std::string& file : tested) {
+    EXPECT_TRUE(fs::is_regular_file(corpus() / file)) << file;
+  }
+}
+
+// The support files are valid, so each bad file fails for its own defect only.
+TEST(BadInputCorpus, SupportFilesLoad) {
+  auto hand = loadRobotFile(corpus() / "robots" / "good_hand.xml");
+  EXPECT_EQ(hand->dofs.size(), 2u);
+  EXPECT_EQ(hand->chains.size(), 1u);
+  auto cube = loadBodyFile(corpus() / "bodies" / "good_cube.xml");
+  EXPECT_EQ(cube->mesh->triangleCount(), 12u);
+  EXPECT_EQ(cube->material, Material::Plastic);
+  EXPECT_EQ(identityEigengrasps(3).grasps.size(), 3u);
+  EXPECT_NO_THROW(loadEigengraspFile(corpus() / "robots" / "eigen_wrong_dims.xml", 3));
+}
+
+}  // namespace
+}  // namespace graspkit
