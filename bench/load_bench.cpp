@@ -53,8 +53,8 @@ void BM_LoadWorld(benchmark::State& state, std::string file, double graspit_seco
     benchmark::DoNotOptimize(world);
   }
   state.counters["mesh_MB"] = bytes / 1e6;
-  state.counters["x_graspit"] = benchmark::Counter(graspit_seconds * state.iterations(),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["x_graspit"] =
+      benchmark::Counter(graspit_seconds * state.iterations(), benchmark::Counter::kIsRate);
 }
 
 void BM_LoadRobot(benchmark::State& state, std::string file, double graspit_seconds) {
@@ -67,15 +67,16 @@ void BM_LoadRobot(benchmark::State& state, std::string file, double graspit_seco
     benchmark::DoNotOptimize(robot);
   }
   state.counters["mesh_MB"] = bytes / 1e6;
-  state.counters["x_graspit"] = benchmark::Counter(graspit_seconds * state.iterations(),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["x_graspit"] =
+      benchmark::Counter(graspit_seconds * state.iterations(), benchmark::Counter::kIsRate);
 }
 
 // Registers one benchmark per shared robot that GraspIt! loads, with its reference time.
 bool registerAll() {
   std::ifstream in(sharedDir() / "reference" / "graspit-figures.json");
   if (!in) {
-    benchmark::RegisterBenchmark("LoadWorld/plannerMug", BM_LoadWorld, "worlds/plannerMug.xml", 0.0);
+    benchmark::RegisterBenchmark("LoadWorld/plannerMug", BM_LoadWorld, "worlds/plannerMug.xml",
+                                 0.0);
     return false;
   }
   const auto figures = nlohmann::json::parse(in);

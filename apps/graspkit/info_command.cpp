@@ -12,7 +12,9 @@ namespace {
 
 using nlohmann::json;
 
-json vec(const Vector3& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec(const Vector3& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
 json quat(const Transform& t) {
   const Quaternion q(t.linear());
   return json::array({q.w(), q.x(), q.y(), q.z()});
@@ -116,7 +118,8 @@ json worldJson(const World& world) {
 
 std::string fixed(const json& array) {
   std::string out;
-  for (const auto& v : array) out += fmt::format("{}{:.4f}", out.empty() ? "" : " ", v.get<double>());
+  for (const auto& v : array)
+    out += fmt::format("{}{:.4f}", out.empty() ? "" : " ", v.get<double>());
   return out;
 }
 
@@ -131,8 +134,8 @@ void printText(const json& j, std::ostream& out) {
   }
   for (const auto& r : j["robots"]) {
     out << fmt::format("robot {} (type {}): {} DOFs, {} chains, {} triangles\n",
-                       r["name"].get<std::string>(), r["type"].get<std::string>(),
-                       r["dofs"].size(), r["chains"].size(), r["triangles"].get<std::size_t>());
+                       r["name"].get<std::string>(), r["type"].get<std::string>(), r["dofs"].size(),
+                       r["chains"].size(), r["triangles"].get<std::size_t>());
     out << fmt::format("  dof values [{}]\n", fixed(r["dof_values"]));
     out << fmt::format("  {:<28} t [{}]  q [{}]\n", r["base"]["name"].get<std::string>(),
                        fixed(r["base"]["translation"]), fixed(r["base"]["quaternion"]));

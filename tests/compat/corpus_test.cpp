@@ -69,7 +69,8 @@ TEST(Corpus, RobotSurveyMatchesGraspIt) {
     EXPECT_EQ(robot->eigengrasps.grasps.size(), entry.at("num_eigengrasps").get<std::size_t>());
     EXPECT_EQ(robot->virtualContacts.size(), entry.at("num_virtual_contacts").get<std::size_t>());
     // Special types decide for themselves in their plugins (GraspIt!'s Puma560 is no hand).
-    if (robot->type == "Robot" || robot->type == "Hand") EXPECT_EQ(robot->isHand, entry.at("is_hand").get<bool>());
+    if (robot->type == "Robot" || robot->type == "Hand")
+      EXPECT_EQ(robot->isHand, entry.at("is_hand").get<bool>());
     Robot instance(robot);
     const auto expected = entry.at("dof_values_as_loaded").get<std::vector<double>>();
     for (int d = 0; d < instance.dofCount(); ++d) {
@@ -155,7 +156,8 @@ TEST(Corpus, ObjectMassPropertiesMatchGraspIt) {
     EXPECT_NEAR(body->maxRadius, entry.at("max_radius_mm").get<double>(),
                 1e-5 * entry.at("max_radius_mm").get<double>());  // Coin hands out floats
     const auto inertia = entry.at("inertia").get<std::vector<double>>();
-    const double scale = std::max(1.0, Eigen::Map<const Eigen::VectorXd>(inertia.data(), 9).cwiseAbs().maxCoeff());
+    const double scale =
+        std::max(1.0, Eigen::Map<const Eigen::VectorXd>(inertia.data(), 9).cwiseAbs().maxCoeff());
     for (int k = 0; k < 9; ++k) {
       EXPECT_NEAR(body->inertia(k / 3, k % 3), inertia[k], 1e-5 * scale) << "element " << k;
     }
@@ -180,7 +182,9 @@ TEST(Corpus, SharedWorldsSurviveASaveRoundTrip) {
       EXPECT_EQ(again.bodies()[b].filename, original.bodies()[b].filename);
       EXPECT_EQ(again.bodies()[b].kind, original.bodies()[b].kind);
       EXPECT_TRUE(again.bodies()[b].pose.isApprox(original.bodies()[b].pose, 1e-12));
-      EXPECT_LT((again.bodies()[b].pose.translation() - original.bodies()[b].pose.translation()).norm(), 1e-9);
+      EXPECT_LT(
+          (again.bodies()[b].pose.translation() - original.bodies()[b].pose.translation()).norm(),
+          1e-9);
     }
     ASSERT_EQ(again.robotCount(), original.robotCount());
     for (int r = 0; r < original.robotCount(); ++r) {

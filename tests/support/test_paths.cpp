@@ -9,8 +9,12 @@
 
 namespace graspkit::test {
 
-std::filesystem::path sourceDir() { return GRASPKIT_SOURCE_DIR; }
-std::filesystem::path modelsDir() { return sourceDir() / "models"; }
+std::filesystem::path sourceDir() {
+  return GRASPKIT_SOURCE_DIR;
+}
+std::filesystem::path modelsDir() {
+  return sourceDir() / "models";
+}
 
 std::filesystem::path scratchDir() {
   static std::atomic<int> counter{0};

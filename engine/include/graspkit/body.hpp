@@ -57,10 +57,10 @@ enum class BodyKind { Obstacle, Graspable };
 struct Body {
   std::shared_ptr<const BodyModel> model;
   BodyKind kind = BodyKind::Obstacle;
-  std::string name;                      // unique within the world
-  std::filesystem::path filename;        // as written in the world file (for saving)
+  std::string name;                        // unique within the world
+  std::filesystem::path filename;          // as written in the world file (for saving)
   Transform pose = Transform::Identity();  // body frame in world, mm
-  DynamicState state;                    // meaningful for graspable bodies
+  DynamicState state;                      // meaningful for graspable bodies
 
   bool isDynamic() const { return kind == BodyKind::Graspable; }
   // Moves the body and keeps the dynamic state's position (of the CoG) in step.

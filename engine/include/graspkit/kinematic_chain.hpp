@@ -13,13 +13,14 @@ struct KinematicChain {
   Transform base = Transform::Identity();  // palm frame -> frame of the first joint
   std::vector<Joint> joints;
   std::vector<Link> links;
-  int firstJoint = 0;  // robot-wide index of joints[0]
+  int firstJoint = 0;                                       // robot-wide index of joints[0]
   std::vector<std::pair<int, std::string>> tactileFilters;  // (link index, params)
 };
 
 // Forward kinematics of one chain: the world pose of every joint frame (after each joint's DH
 // transform) given the chain's world base pose and its joint values (offsets excluded).
-std::vector<Transform> jointFrames(const KinematicChain& chain, const Transform& chain_base_in_world,
+std::vector<Transform> jointFrames(const KinematicChain& chain,
+                                   const Transform& chain_base_in_world,
                                    std::span<const double> joint_values);
 
 // World poses of the chain's links: link l sits at the frame of its last joint, or at the

@@ -8,10 +8,10 @@
 namespace graspkit {
 
 struct MassProperties {
-  double volume = 0.0;       // mm^3
-  Vector3 centroid;          // volume centroid, mm, body frame
-  Matrix3 inertia;           // about the centroid, per unit mass (density = 1/volume), mm^2
-  bool valid = false;        // false for an open, degenerate or inside-out mesh
+  double volume = 0.0;  // mm^3
+  Vector3 centroid;     // volume centroid, mm, body frame
+  Matrix3 inertia;      // about the centroid, per unit mass (density = 1/volume), mm^2
+  bool valid = false;   // false for an open, degenerate or inside-out mesh
 };
 
 // Volume, centroid and inertia of the solid bounded by `mesh`. Never returns NaN: a mesh whose

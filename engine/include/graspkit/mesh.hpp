@@ -11,7 +11,7 @@
 namespace graspkit {
 
 struct TriangleMesh {
-  std::vector<Vector3> vertices;                      // mm, body frame
+  std::vector<Vector3> vertices;                        // mm, body frame
   std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
 
   std::size_t triangleCount() const { return triangles.size(); }

@@ -16,6 +16,9 @@ enum class MeshFormat { Auto, Inventor, Off, Ply, Stl, Obj };
 // Guesses the format from the file extension (case-insensitive); Inventor when unknown.
 MeshFormat meshFormatFromExtension(const std::filesystem::path& path);
 
+// True for the extensions loadMesh reads (iv, wrl, off, ply, stl, stlb, obj; any case).
+bool isMeshFile(const std::filesystem::path& path);
+
 // Loads a geometry file. Throws graspkit::Error naming the file (and line where the parser
 // knows it) for missing, unreadable or malformed files, or files with no triangles.
 TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format = MeshFormat::Auto);

@@ -30,7 +30,7 @@ struct TendonWrapper {
   Vector3 orientation = Vector3::UnitZ();
   double radius = 0.0;
   double length = 0.0;
-  std::vector<std::string> exemptions;  // tendon names
+  std::vector<std::string> exemptions;                         // tendon names
   std::vector<std::pair<std::string, Vector3>> wrappingSides;  // tendon name, side direction
 };
 

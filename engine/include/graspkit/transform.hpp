@@ -17,7 +17,11 @@ Transform makeTransform(const Vector3& translation, const Quaternion& rotation);
 // Standard Denavit-Hartenberg frame: T = Rz(theta) * Tz(d) * Tx(a) * Rx(alpha).
 Transform denavitHartenberg(double theta, double d, double a, double alpha);
 
-inline double degreesToRadians(double degrees) { return degrees * (M_PI / 180.0); }
-inline double radiansToDegrees(double radians) { return radians * (180.0 / M_PI); }
+inline double degreesToRadians(double degrees) {
+  return degrees * (M_PI / 180.0);
+}
+inline double radiansToDegrees(double radians) {
+  return radians * (180.0 / M_PI);
+}
 
 }  // namespace graspkit

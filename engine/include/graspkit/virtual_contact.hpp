@@ -12,7 +12,7 @@ struct VirtualContact {
   int finger = -1;  // chain index, -1 for the palm
   int link = 0;
   std::vector<Eigen::Matrix<double, 6, 1>> frictionEdges;
-  Vector3 location = Vector3::Zero();  // mm, link frame
+  Vector3 location = Vector3::Zero();            // mm, link frame
   Quaternion rotation = Quaternion::Identity();  // contact frame in link frame
   Vector3 translation = Vector3::Zero();
   Vector3 normal = Vector3::UnitZ();

@@ -34,6 +34,13 @@ void requireRegularFile(const std::filesystem::path& path) {
 
 }  // namespace
 
+bool isMeshFile(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
+         ext == ".stlb" || ext == ".obj";
+}
+
 MeshFormat meshFormatFromExtension(const std::filesystem::path& path) {
   const std::string ext = lowerCaseExtension(path);
   if (ext == "off") return MeshFormat::Off;

@@ -16,14 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-bool isGeometryFile(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
-         ext == ".stlb" || ext == ".obj";
-}
-
-MeshFormat formatFromType(const fs::path& file, const XMLElement& element, const fs::path& geometry) {
+MeshFormat formatFromType(const fs::path& file, const XMLElement& element,
+                          const fs::path& geometry) {
   const char* type = element.Attribute("type");
   if (!type) return meshFormatFromExtension(geometry);
   const std::string_view t(type);
@@ -156,11 +150,11 @@ void readGeometry(const fs::path& file, const XMLElement& root, BodyModel& body)
 std::shared_ptr<const BodyModel> readBodyXml(const fs::path& file) {
   xml::Document doc(file);
   const XMLElement& root = doc.root();
-  xml::warnUnknownChildren(file, root,
-                           {"material", "youngs", "normalCompliance", "shearCompliance",
-                            "useFlockOfBirds", "geometryFile", "geometryScaling",
-                            "geometryScalingX", "geometryScalingY", "geometryScalingZ",
-                            "geometryOffset", "mass", "cog", "inertia_matrix"});
+  xml::warnUnknownChildren(
+      file, root,
+      {"material", "youngs", "normalCompliance", "shearCompliance", "useFlockOfBirds",
+       "geometryFile", "geometryScaling", "geometryScalingX", "geometryScalingY",
+       "geometryScalingZ", "geometryOffset", "mass", "cog", "inertia_matrix"});
   auto body = std::make_shared<BodyModel>();
   body->name = file.stem().string();
   body->file = file;
@@ -184,7 +178,7 @@ std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
 }  // namespace
 
 std::shared_ptr<const BodyModel> loadBodyFile(const fs::path& file, ModelCache* cache) {
-  auto load = [&]() { return isGeometryFile(file) ? readBareGeometry(file) : readBodyXml(file); };
+  auto load = [&]() { return isMeshFile(file) ? readBareGeometry(file) : readBodyXml(file); };
   return cache ? cache->body(file, load) : load();
 }
 

@@ -28,7 +28,8 @@ Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dof
     }
     auto value = xml::toDouble(attr->Value());
     if (!value) {
-      throw Error(xml::at(file, *dims), fmt::format("{}='{}' is not a number", name, attr->Value()));
+      throw Error(xml::at(file, *dims),
+                  fmt::format("{}='{}' is not a number", name, attr->Value()));
     }
     values[index] = *value;
   }
@@ -88,7 +89,8 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
     set.grasps.push_back(std::move(grasp));
   }
   if (set.grasps.empty()) throw Error(xml::at(file, root), "no <EG> eigengrasp");
-  if (const auto* origin = xml::child(root, "ORIGIN")) set.origin = dimVals(file, *origin, dof_count);
+  if (const auto* origin = xml::child(root, "ORIGIN"))
+    set.origin = dimVals(file, *origin, dof_count);
   if (const auto* norm = xml::child(root, "NORM")) set.norm = dimVals(file, *norm, dof_count);
   return set;
 }

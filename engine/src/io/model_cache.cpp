@@ -27,12 +27,14 @@ std::shared_ptr<const Model> lookup(std::mutex& mutex, Map& map, const std::file
 }  // namespace
 
 std::shared_ptr<const BodyModel> ModelCache::body(
-    const std::filesystem::path& file, const std::function<std::shared_ptr<const BodyModel>()>& load) {
+    const std::filesystem::path& file,
+    const std::function<std::shared_ptr<const BodyModel>()>& load) {
   return lookup<BodyModel>(mutex_, bodies_, file, load);
 }
 
 std::shared_ptr<const RobotModel> ModelCache::robot(
-    const std::filesystem::path& file, const std::function<std::shared_ptr<const RobotModel>()>& load) {
+    const std::filesystem::path& file,
+    const std::function<std::shared_ptr<const RobotModel>()>& load) {
   return lookup<RobotModel>(mutex_, robots_, file, load);
 }
 

@@ -31,8 +31,9 @@ struct Coupling {
 Coupling parseCoupling(const fs::path& file, const XMLElement& element, int dof_count) {
   const std::string expression = xml::text(element);
   auto fail = [&](const std::string& why) {
-    return Error(xml::at(file, element),
-                 fmt::format("expression '{}' {}; expected d#*k+c (e.g. d1*0.5+40)", expression, why));
+    return Error(
+        xml::at(file, element),
+        fmt::format("expression '{}' {}; expected d#*k+c (e.g. d1*0.5+40)", expression, why));
   };
   std::string_view rest(expression);
   if (rest.empty() || rest.front() != 'd') throw fail("does not start with 'd'");
@@ -64,17 +65,10 @@ Coupling parseCoupling(const fs::path& file, const XMLElement& element, int dof_
                      expression, rest));
   }
   if (coupling.dof < 0 || coupling.dof >= dof_count) {
-    throw Error(xml::at(file, element),
-                fmt::format("expression '{}' names dof {}, robot has {}", expression, coupling.dof,
-                            dof_count));
+    throw Error(xml::at(file, element), fmt::format("expression '{}' names dof {}, robot has {}",
+                                                    expression, coupling.dof, dof_count));
   }
   return coupling;
-}
-
-const XMLElement& required(const fs::path& file, const XMLElement& parent, const char* name) {
-  const auto* element = xml::child(parent, name);
-  if (!element) throw Error(xml::at(file, parent), fmt::format("missing <{}>", name));
-  return *element;
 }
 
 Dof readDof(const fs::path& file, const XMLElement& element) {
@@ -123,7 +117,7 @@ Joint readJoint(const fs::path& file, const XMLElement& element, int dof_count) 
   }
   const bool revolute = joint.type == JointType::Revolute;
   // The driven parameter: theta for revolute joints (degrees), d for prismatic ones (mm).
-  const XMLElement& driven = required(file, element, revolute ? "theta" : "d");
+  const XMLElement& driven = xml::requiredChild(file, element, revolute ? "theta" : "d");
   const Coupling coupling = parseCoupling(file, driven, dof_count);
   joint.dof = coupling.dof;
   joint.ratio = coupling.ratio;
@@ -205,16 +199,17 @@ class RobotReader {
     if (std::string_view(root.Name()) != "robot") {
       throw Error(xml::at(file_, root), "the root element of a robot file must be <robot>");
     }
-    xml::warnUnknownChildren(file_, root,
-                             {"palm", "filter", "dof", "chain", "disableCollision",
-                              "approachDirection", "eigenGrasps", "virtualContacts", "cyberGlove",
-                              "flockOfBirds", "tendon", "tendonWrapper"});
+    xml::warnUnknownChildren(
+        file_, root,
+        {"palm", "filter", "dof", "chain", "disableCollision", "approachDirection", "eigenGrasps",
+         "virtualContacts", "cyberGlove", "flockOfBirds", "tendon", "tendonWrapper"});
     auto robot = std::make_shared<RobotModel>();
     robot->file = file_;
     robot->name = file_.stem().string();
     readType(root, *robot);
     readPalm(root, *robot);
-    for (const XMLElement* e : xml::children(root, "dof")) robot->dofs.push_back(readDof(file_, *e));
+    for (const XMLElement* e : xml::children(root, "dof"))
+      robot->dofs.push_back(readDof(file_, *e));
     if (robot->dofs.empty()) throw Error(xml::at(file_, root), "a robot needs at least one <dof>");
     for (const XMLElement* e : xml::children(root, "chain")) readChain(*e, *robot);
     if (robot->chains.empty()) {
@@ -251,7 +246,7 @@ class RobotReader {
   }
 
   void readPalm(const XMLElement& root, RobotModel& robot) {
-    const XMLElement& palm = required(file_, root, "palm");
+    const XMLElement& palm = xml::requiredChild(file_, root, "palm");
     robot.palmFile = xml::text(palm);
     robot.palm = body(palm);
     if (const char* sensor = palm.Attribute("sensorType")) robot.palmSensorType = sensor;
@@ -302,7 +297,8 @@ class RobotReader {
         throw Error(xml::at(file_, *f), fmt::format("filter names link {}, chain has {} links",
                                                     link_index, chain.links.size()));
       }
-      chain.tactileFilters.emplace_back(link_index, f->Attribute("params") ? f->Attribute("params") : "");
+      chain.tactileFilters.emplace_back(link_index,
+                                        f->Attribute("params") ? f->Attribute("params") : "");
     }
     robot.chains.push_back(std::move(chain));
   }
@@ -385,8 +381,9 @@ class RobotReader {
   void readExtras(const XMLElement& root, RobotModel& robot) {
     if (const auto* e = xml::child(root, "approachDirection")) {
       ApproachDirection approach;
-      approach.referenceLocation = xml::vector3(file_, required(file_, *e, "referenceLocation"));
-      approach.direction = xml::vector3(file_, required(file_, *e, "direction"));
+      approach.referenceLocation =
+          xml::vector3(file_, xml::requiredChild(file_, *e, "referenceLocation"));
+      approach.direction = xml::vector3(file_, xml::requiredChild(file_, *e, "direction"));
       if (approach.direction.norm() < 1e-12) {
         throw Error(xml::at(file_, *e), "approach direction has zero length");
       }
@@ -396,12 +393,13 @@ class RobotReader {
     robot.eigengrasps = identityEigengrasps(dofs);
     if (const auto* e = xml::child(root, "eigenGrasps")) {
       robot.eigengraspFile = xml::text(*e);
-      robot.eigengrasps = nested(*e, [&] { return loadEigengraspFile(dir_ / robot.eigengraspFile, dofs); });
+      robot.eigengrasps = xml::locatedAt(
+          file_, *e, [&] { return loadEigengraspFile(dir_ / robot.eigengraspFile, dofs); });
     }
     if (const auto* e = xml::child(root, "virtualContacts")) {
       robot.virtualContactFile = xml::text(*e);
-      robot.virtualContacts =
-          nested(*e, [&] { return loadVirtualContactFile(dir_ / robot.virtualContactFile); });
+      robot.virtualContacts = xml::locatedAt(
+          file_, *e, [&] { return loadVirtualContactFile(dir_ / robot.virtualContactFile); });
     }
     if (const auto* e = xml::child(root, "cyberGlove")) robot.cyberGloveFile = xml::text(*e);
     if (const auto* e = xml::child(root, "flockOfBirds")) {
@@ -414,19 +412,10 @@ class RobotReader {
       if (const auto* t = xml::child(*e, "transform")) birds.offset = xml::transform(file_, *t);
       robot.flockOfBirds = birds;
     }
-    for (const XMLElement* e : xml::children(root, "tendon")) robot.tendons.push_back(tendon(*e, robot));
+    for (const XMLElement* e : xml::children(root, "tendon"))
+      robot.tendons.push_back(tendon(*e, robot));
     for (const XMLElement* e : xml::children(root, "tendonWrapper")) {
       robot.tendonWrappers.push_back(tendonWrapper(*e, robot));
-    }
-  }
-
-  // Errors in a file the robot names also say where the robot names it.
-  template <typename Load>
-  auto nested(const XMLElement& element, const Load& load) -> decltype(load()) {
-    try {
-      return load();
-    } catch (const Error& e) {
-      throw Error(xml::at(file_, element), e.what());
     }
   }
 
@@ -440,7 +429,7 @@ class RobotReader {
       TendonInsertionPoint point;
       point.link = linkRef(*p, "chain", "link");
       checkRef(robot, *p, point.link);
-      point.position = xml::vector3(file_, required(file_, *p, "position"));
+      point.position = xml::vector3(file_, xml::requiredChild(file_, *p, "position"));
       point.friction = xml::optionalNumber(file_, *p, "friction", 0.0);
       t.insertionPoints.push_back(point);
     }
@@ -455,8 +444,8 @@ class RobotReader {
     w.link = linkRef(element, "chain", "link");
     checkRef(robot, element, w.link);
     w.friction = xml::optionalNumber(file_, element, "friction", 0.0);
-    w.position = xml::vector3(file_, required(file_, element, "position"));
-    w.orientation = xml::vector3(file_, required(file_, element, "orientation"));
+    w.position = xml::vector3(file_, xml::requiredChild(file_, element, "position"));
+    w.orientation = xml::vector3(file_, xml::requiredChild(file_, element, "orientation"));
     w.radius = xml::requiredNumber(file_, element, "radius");
     w.length = xml::optionalNumber(file_, element, "length", 0.0);
     for (const XMLElement* e : xml::children(element, "exemption")) {
@@ -464,8 +453,8 @@ class RobotReader {
     }
     for (const XMLElement* e : xml::children(element, "wrapping_side")) {
       const char* name = e->Attribute("tendon");
-      w.wrappingSides.emplace_back(name ? name : "",
-                                   xml::vector3(file_, required(file_, *e, "orientation")));
+      w.wrappingSides.emplace_back(
+          name ? name : "", xml::vector3(file_, xml::requiredChild(file_, *e, "orientation")));
     }
     return w;
   }

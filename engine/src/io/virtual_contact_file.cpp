@@ -9,16 +9,10 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-const XMLElement& required(const fs::path& file, const XMLElement& parent, const char* name) {
-  const auto* element = xml::child(parent, name);
-  if (!element) throw Error(xml::at(file, parent), fmt::format("missing <{}>", name));
-  return *element;
-}
-
 VirtualContact readContact(const fs::path& file, const XMLElement& element) {
   VirtualContact contact;
-  contact.finger = xml::integer(file, required(file, element, "finger_number"));
-  contact.link = xml::integer(file, required(file, element, "link_number"));
+  contact.finger = xml::integer(file, xml::requiredChild(file, element, "finger_number"));
+  contact.link = xml::integer(file, xml::requiredChild(file, element, "link_number"));
   if (const auto* edges = xml::child(element, "friction_edges")) {
     for (const XMLElement* edge : xml::children(*edges, "friction_edge")) {
       const auto v = xml::numbers(file, *edge, 6);
@@ -33,15 +27,16 @@ VirtualContact readContact(const fs::path& file, const XMLElement& element) {
                               contact.frictionEdges.size()));
     }
   }
-  contact.location = xml::vector3(file, required(file, element, "location"));
-  const auto q = xml::numbers(file, required(file, element, "rotation"), 4);  // w x y z
+  contact.location = xml::vector3(file, xml::requiredChild(file, element, "location"));
+  const auto q = xml::numbers(file, xml::requiredChild(file, element, "rotation"), 4);  // w x y z
   contact.rotation = Quaternion(q[0], q[1], q[2], q[3]);
   if (contact.rotation.norm() < 1e-9) {
     throw Error(xml::at(file, *xml::child(element, "rotation")), "zero quaternion");
   }
   contact.rotation.normalize();
-  if (const auto* t = xml::child(element, "translation")) contact.translation = xml::vector3(file, *t);
-  contact.normal = xml::vector3(file, required(file, element, "normal"));
+  if (const auto* t = xml::child(element, "translation"))
+    contact.translation = xml::vector3(file, *t);
+  contact.normal = xml::vector3(file, xml::requiredChild(file, element, "normal"));
   contact.sCof = xml::optionalNumber(file, element, "sCof", 0.0);
   return contact;
 }

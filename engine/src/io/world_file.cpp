@@ -12,6 +12,7 @@
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
+#include "graspkit/mesh_loader.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -19,12 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
-
-const XMLElement& required(const fs::path& file, const XMLElement& parent, const char* name) {
-  const auto* element = xml::child(parent, name);
-  if (!element) throw Error(xml::at(file, parent), fmt::format("missing <{}>", name));
-  return *element;
-}
 
 class WorldReader {
  public:
@@ -64,17 +59,9 @@ class WorldReader {
     }
     std::string tried;
     for (const fs::path& root : roots_) tried += "\n  " + root.string();
-    throw Error(xml::at(file_, element),
-                fmt::format("'{}' not found; searched (set --root or GRASPKIT_ROOT):{}", name, tried));
-  }
-
-  template <typename Load>
-  auto located(const XMLElement& element, const Load& load) -> decltype(load()) {
-    try {
-      return load();
-    } catch (const Error& e) {
-      throw Error(xml::at(file_, element), e.what());
-    }
+    throw Error(
+        xml::at(file_, element),
+        fmt::format("'{}' not found; searched (set --root or GRASPKIT_ROOT):{}", name, tried));
   }
 
   Transform pose(const XMLElement& parent) {
@@ -86,10 +73,10 @@ class WorldReader {
     if (xml::child(element, "body") && !xml::child(element, "filename")) {
       throw Error(xml::at(file_, element), "inline <body> definitions are not supported");
     }
-    const XMLElement& filename = required(file_, element, "filename");
+    const XMLElement& filename = xml::requiredChild(file_, element, "filename");
     const fs::path path = resolve(filename);
     Body body;
-    body.model = located(filename, [&] { return loadBodyFile(path, cache_); });
+    body.model = xml::locatedAt(file_, filename, [&] { return loadBodyFile(path, cache_); });
     body.kind = kind;
     body.filename = xml::text(filename);
     body.setPose(pose(element));
@@ -97,9 +84,9 @@ class WorldReader {
   }
 
   void readRobot(const XMLElement& element, World& world) {
-    const XMLElement& filename = required(file_, element, "filename");
+    const XMLElement& filename = xml::requiredChild(file_, element, "filename");
     const fs::path path = resolve(filename);
-    Robot robot(located(filename, [&] { return loadRobotFile(path, cache_); }));
+    Robot robot(xml::locatedAt(file_, filename, [&] { return loadRobotFile(path, cache_); }));
     if (const auto* values = xml::child(element, "dofValues")) readDofValues(*values, robot);
     robot.setPose(pose(element));  // GraspIt! applies the transform after the DOF values
     world.addRobot(std::move(robot), xml::text(filename));
@@ -137,7 +124,8 @@ class WorldReader {
           throw Error(xml::at(file_, element),
                       fmt::format("breakaway flag of DOF {} is {}, expected 0 or 1", d, flag));
         }
-        if (flag == 1.0) broken.emplace_back(joint, BreakawayState{true, take("a breakaway value")});
+        if (flag == 1.0)
+          broken.emplace_back(joint, BreakawayState{true, take("a breakaway value")});
       }
     }
     if (next != tokens.size()) {
@@ -151,16 +139,16 @@ class WorldReader {
 
   void readConnection(const XMLElement& element, World& world) {
     Connection connection;
-    connection.parentRobot = xml::integer(file_, required(file_, element, "parentRobot"));
-    connection.parentChain = xml::integer(file_, required(file_, element, "parentChain"));
-    connection.childRobot = xml::integer(file_, required(file_, element, "childRobot"));
+    connection.parentRobot = xml::integer(file_, xml::requiredChild(file_, element, "parentRobot"));
+    connection.parentChain = xml::integer(file_, xml::requiredChild(file_, element, "parentChain"));
+    connection.childRobot = xml::integer(file_, xml::requiredChild(file_, element, "childRobot"));
     if (const auto* mount = xml::child(element, "mountFilename")) {
       connection.mountFilename = xml::text(*mount);
       const fs::path path = resolve(*mount);
-      connection.mount = located(*mount, [&] { return loadBodyFile(path, cache_); });
+      connection.mount = xml::locatedAt(file_, *mount, [&] { return loadBodyFile(path, cache_); });
     }
     connection.offset = pose(element);
-    located(element, [&] {
+    xml::locatedAt(file_, element, [&] {
       world.connect(std::move(connection));
       return 0;
     });
@@ -168,9 +156,9 @@ class WorldReader {
 
   void readCamera(const XMLElement& element, World& world) {
     Camera camera;
-    camera.position = xml::vector3(file_, required(file_, element, "position"));
+    camera.position = xml::vector3(file_, xml::requiredChild(file_, element, "position"));
     // Passed straight to Coin by GraspIt!, so x y z w, unlike every other quaternion.
-    const auto q = xml::numbers(file_, required(file_, element, "orientation"), 4);
+    const auto q = xml::numbers(file_, xml::requiredChild(file_, element, "orientation"), 4);
     camera.orientation = Quaternion(q[3], q[0], q[1], q[2]);
     camera.focalDistance = xml::optionalNumber(file_, element, "focalDistance", 0.0);
     world.setCamera(camera);
@@ -255,13 +243,6 @@ std::string rootName(const fs::path& file) {
   return doc.root().Name();
 }
 
-bool isGeometryFile(const fs::path& file) {
-  std::string ext = file.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
-         ext == ".obj";
-}
-
 }  // namespace
 
 std::vector<fs::path> searchRoots(const fs::path& world_file, const LoadOptions& options) {
@@ -285,7 +266,7 @@ World loadWorldFile(const fs::path& file, const LoadOptions& options, ModelCache
 }
 
 World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* cache) {
-  const std::string root = isGeometryFile(file) ? "" : rootName(file);
+  const std::string root = isMeshFile(file) ? "" : rootName(file);
   if (root == "world") return loadWorldFile(file, options, cache);
   World world;
   if (root == "robot") {

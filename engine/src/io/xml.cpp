@@ -43,7 +43,8 @@ const tinyxml2::XMLElement* child(const tinyxml2::XMLElement& parent, const char
 std::vector<const tinyxml2::XMLElement*> children(const tinyxml2::XMLElement& parent,
                                                   const char* name) {
   std::vector<const tinyxml2::XMLElement*> out;
-  for (auto* e = parent.FirstChildElement(name); e; e = e->NextSiblingElement(name)) out.push_back(e);
+  for (auto* e = parent.FirstChildElement(name); e; e = e->NextSiblingElement(name))
+    out.push_back(e);
   return out;
 }
 
@@ -67,8 +68,10 @@ void warnUnknownChildren(const std::filesystem::path& file, const tinyxml2::XMLE
 }
 
 std::optional<double> toDouble(std::string_view token) {
-  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.front()))) token.remove_prefix(1);
-  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back()))) token.remove_suffix(1);
+  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.front())))
+    token.remove_prefix(1);
+  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back())))
+    token.remove_suffix(1);
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   if (token.empty() || token.front() == '+') return std::nullopt;
   double value = 0.0;
@@ -104,9 +107,8 @@ std::vector<double> numbers(const std::filesystem::path& file, const tinyxml2::X
     out.push_back(*value);
   }
   if (count >= 0 && static_cast<int>(out.size()) != count) {
-    throw Error(at(file, element),
-                fmt::format("expected {} number{}, found {} in '{}'", count, count == 1 ? "" : "s",
-                            out.size(), content));
+    throw Error(at(file, element), fmt::format("expected {} number{}, found {} in '{}'", count,
+                                               count == 1 ? "" : "s", out.size(), content));
   }
   return out;
 }
@@ -130,6 +132,13 @@ int integer(const std::filesystem::path& file, const tinyxml2::XMLElement& eleme
     throw Error(at(file, element), fmt::format("'{}' is not an integer", content));
   }
   return value;
+}
+
+const tinyxml2::XMLElement& requiredChild(const std::filesystem::path& file,
+                                          const tinyxml2::XMLElement& parent, const char* name) {
+  const auto* element = child(parent, name);
+  if (!element) throw Error(at(file, parent), fmt::format("missing <{}>", name));
+  return *element;
 }
 
 double requiredNumber(const std::filesystem::path& file, const tinyxml2::XMLElement& parent,
@@ -166,14 +175,15 @@ Transform rotationAbout(const std::filesystem::path& file, const tinyxml2::XMLEl
   const std::string content = text(element);  // `parts` views into it: keep it alive
   const auto parts = tokens(content);
   const auto degrees = parts.size() == 2 ? toDouble(parts[0]) : std::nullopt;
-  if (!degrees || parts[1].size() != 1 || std::string_view("xyzXYZ").find(parts[1][0]) ==
-                                              std::string_view::npos) {
+  if (!degrees || parts[1].size() != 1 ||
+      std::string_view("xyzXYZ").find(parts[1][0]) == std::string_view::npos) {
     throw Error(at(file, element),
                 fmt::format("expected '<degrees> <x|y|z>', found '{}'", content));
   }
   const int axis = std::tolower(static_cast<unsigned char>(parts[1][0])) - 'x';
   Transform t = Transform::Identity();
-  t.linear() = Eigen::AngleAxisd(degreesToRadians(*degrees), Vector3::Unit(axis)).toRotationMatrix();
+  t.linear() =
+      Eigen::AngleAxisd(degreesToRadians(*degrees), Vector3::Unit(axis)).toRotationMatrix();
   return t;
 }
 

@@ -58,6 +58,22 @@ double number(const std::filesystem::path& file, const tinyxml2::XMLElement& ele
 Vector3 vector3(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
 int integer(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
 
+// A required direct child; throws naming the parent when it is missing.
+const tinyxml2::XMLElement& requiredChild(const std::filesystem::path& file,
+                                          const tinyxml2::XMLElement& parent, const char* name);
+
+// Runs `load` (which reads another file that `element` names); an Error it throws is re-thrown
+// located at `element` too, so the message shows both places.
+template <typename Load>
+auto locatedAt(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
+               const Load& load) -> decltype(load()) {
+  try {
+    return load();
+  } catch (const Error& e) {
+    throw Error(at(file, element), e.what());
+  }
+}
+
 // A required child's number; throws naming the parent when the child is missing.
 double requiredNumber(const std::filesystem::path& file, const tinyxml2::XMLElement& parent,
                       const char* name);

@@ -4,9 +4,12 @@ namespace graspkit {
 
 char dofTypeLetter(DofType type) {
   switch (type) {
-    case DofType::Rigid: return 'r';
-    case DofType::Breakaway: return 'b';
-    case DofType::Compliant: return 'c';
+    case DofType::Rigid:
+      return 'r';
+    case DofType::Breakaway:
+      return 'b';
+    case DofType::Compliant:
+      return 'c';
   }
   return 'r';
 }

@@ -5,15 +5,20 @@ namespace graspkit {
 int jointsConsumed(DynamicJointType type) {
   switch (type) {
     case DynamicJointType::Revolute:
-    case DynamicJointType::Prismatic: return 1;
-    case DynamicJointType::Universal: return 2;
-    case DynamicJointType::Ball: return 3;
-    case DynamicJointType::Fixed: return 0;
+    case DynamicJointType::Prismatic:
+      return 1;
+    case DynamicJointType::Universal:
+      return 2;
+    case DynamicJointType::Ball:
+      return 3;
+    case DynamicJointType::Fixed:
+      return 0;
   }
   return 1;
 }
 
-std::vector<Transform> jointFrames(const KinematicChain& chain, const Transform& chain_base_in_world,
+std::vector<Transform> jointFrames(const KinematicChain& chain,
+                                   const Transform& chain_base_in_world,
                                    std::span<const double> joint_values) {
   std::vector<Transform> frames;
   frames.reserve(chain.joints.size());

@@ -40,11 +40,15 @@ constexpr Table kKinetic = symmetric({{
     {0, 0, 0, 0, 0, 0, 0.6},
 }});
 
-std::size_t index(Material m) { return static_cast<std::size_t>(m); }
+std::size_t index(Material m) {
+  return static_cast<std::size_t>(m);
+}
 
 }  // namespace
 
-std::string_view materialName(Material material) { return kNames[index(material)]; }
+std::string_view materialName(Material material) {
+  return kNames[index(material)];
+}
 
 std::optional<Material> materialFromName(std::string_view name) {
   auto it = std::find(kNames.begin(), kNames.end(), name);
@@ -52,8 +56,12 @@ std::optional<Material> materialFromName(std::string_view name) {
   return static_cast<Material>(it - kNames.begin());
 }
 
-double staticFriction(Material a, Material b) { return kStatic[index(a)][index(b)]; }
-double kineticFriction(Material a, Material b) { return kKinetic[index(a)][index(b)]; }
+double staticFriction(Material a, Material b) {
+  return kStatic[index(a)][index(b)];
+}
+double kineticFriction(Material a, Material b) {
+  return kKinetic[index(a)][index(b)];
+}
 
 double frictionCoefficient(Material a, Material b, bool dynamic, double relative_speed) {
   return (dynamic && relative_speed > kKineticSpeedThreshold) ? kineticFriction(a, b)

@@ -12,7 +12,9 @@ const Body* World::findBody(const std::string& name) const {
   return nullptr;
 }
 
-const Robot& World::robot(int index) const { return worldRobot(index).robot; }
+const Robot& World::robot(int index) const {
+  return worldRobot(index).robot;
+}
 
 const WorldRobot& World::worldRobot(int index) const {
   if (index < 0 || index >= robotCount()) {

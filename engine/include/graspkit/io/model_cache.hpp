@@ -15,10 +15,12 @@ namespace graspkit {
 
 class ModelCache {
  public:
-  std::shared_ptr<const BodyModel> body(const std::filesystem::path& file,
-                                        const std::function<std::shared_ptr<const BodyModel>()>& load);
+  std::shared_ptr<const BodyModel> body(
+      const std::filesystem::path& file,
+      const std::function<std::shared_ptr<const BodyModel>()>& load);
   std::shared_ptr<const RobotModel> robot(
-      const std::filesystem::path& file, const std::function<std::shared_ptr<const RobotModel>()>& load);
+      const std::filesystem::path& file,
+      const std::function<std::shared_ptr<const RobotModel>()>& load);
 
  private:
   std::mutex mutex_;
