@@ -468,8 +468,10 @@ class RobotReader {
 }  // namespace
 
 std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, ModelCache* cache) {
-  auto load = [&]() { return RobotReader(file, cache).read(); };
-  return cache ? cache->robot(file, load) : load();
+  // Without a caller's cache, a local one still reads a link file used by several links once.
+  ModelCache local;
+  ModelCache* used = cache ? cache : &local;
+  return used->robot(file, [&]() { return RobotReader(file, used).read(); });
 }
 
 }  // namespace graspkit

@@ -262,7 +262,8 @@ std::vector<fs::path> searchRoots(const fs::path& world_file, const LoadOptions&
 }
 
 World loadWorldFile(const fs::path& file, const LoadOptions& options, ModelCache* cache) {
-  return WorldReader(file, options, cache).read();
+  ModelCache local;  // files named twice in one world are read once, even without a cache
+  return WorldReader(file, options, cache ? cache : &local).read();
 }
 
 World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* cache) {
