@@ -19,32 +19,18 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "test_paths.hpp"
+#include "xml_scan.hpp"
 
 namespace graspkit {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readText;
+using test::tagTexts;
 
 nlohmann::json referenceFigures() {
   std::ifstream in(*test::referenceFigures());
   return nlohmann::json::parse(in);
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Text of every <tag ...>text</tag> in `xml`: GraspIt!'s body and robot files are flat enough
-// for this, and it keeps these tests independent of graspkit's own XML readers.
-std::vector<std::string> tagTexts(const std::string& xml, const std::string& tag) {
-  const std::regex pattern("<" + tag + R"((\s[^>]*)?>\s*([^<]*?)\s*</)" + tag + ">");
-  std::vector<std::string> texts;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), pattern);
-       it != std::sregex_iterator(); ++it) {
-    texts.push_back((*it)[2]);
-  }
-  return texts;
 }
 
 // The link files of every <chain>, in order; <link> also appears in tendon insertion points.

@@ -19,11 +19,14 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "test_paths.hpp"
+#include "xml_scan.hpp"
 
 namespace graspkit {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readText;
+using test::tagTexts;
 
 fs::path writeFile(const fs::path& dir, const std::string& name, const std::string& text) {
   const fs::path path = dir / name;
@@ -522,22 +525,6 @@ const nlohmann::json* massPropertiesEntry(const nlohmann::json& figures, const s
     if (entry["file"] == xml) return &entry;
   }
   return nullptr;
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Text of every <tag ...>text</tag> in `xml`, in order (the GraspIt! files are flat and simple).
-std::vector<std::string> tagTexts(const std::string& xml, const std::string& tag) {
-  const std::regex pattern("<" + tag + R"((\s[^>]*)?>\s*([^<]*?)\s*</)" + tag + ">");
-  std::vector<std::string> texts;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), pattern);
-       it != std::sregex_iterator(); ++it) {
-    texts.push_back((*it)[2]);
-  }
-  return texts;
 }
 
 TEST(InventorLoaderGraspItModels, ObjectTriangleCountsMatchGraspIt) {
