@@ -1,0 +1,108 @@
+#include "graspkit/body_ref.hpp"
+
+#include <fmt/format.h>
+
+#include "graspkit/error.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit {
+namespace {
+
+const Link* findLink(const RobotModel& model, const LinkRef& link) {
+  if (link.chain < 0 || link.chain >= static_cast<int>(model.chains.size())) return nullptr;
+  const auto& links = model.chains[link.chain].links;
+  if (link.link < 0 || link.link >= static_cast<int>(links.size())) return nullptr;
+  return &links[link.link];
+}
+
+[[noreturn]] void throwInvalid(const BodyRef& ref) {
+  static constexpr const char* kKinds[] = {"body", "link of robot", "mount of connection"};
+  throw Error(fmt::format("no {} {} (chain {}, link {}) in the world",
+                          kKinds[static_cast<int>(ref.kind)], ref.index, ref.link.chain,
+                          ref.link.link));
+}
+
+}  // namespace
+
+bool isValid(const World& world, const BodyRef& ref) {
+  switch (ref.kind) {
+    case BodyRef::Kind::Body:
+      return ref.index >= 0 && ref.index < static_cast<int>(world.bodies().size()) &&
+             world.bodies()[ref.index].model;
+    case BodyRef::Kind::Link: {
+      if (ref.index < 0 || ref.index >= world.robotCount()) return false;
+      const RobotModel& model = world.robot(ref.index).model();
+      if (ref.link.isBase()) return ref.link.link < 0 && model.palm != nullptr;
+      const Link* link = findLink(model, ref.link);
+      return link && link->body;
+    }
+    case BodyRef::Kind::Mount:
+      return ref.index >= 0 && ref.index < static_cast<int>(world.connections().size()) &&
+             world.connections()[ref.index].mount;
+  }
+  return false;
+}
+
+const BodyModel& bodyModel(const World& world, const BodyRef& ref) {
+  if (!isValid(world, ref)) throwInvalid(ref);
+  switch (ref.kind) {
+    case BodyRef::Kind::Body:
+      return *world.bodies()[ref.index].model;
+    case BodyRef::Kind::Link: {
+      const RobotModel& model = world.robot(ref.index).model();
+      return ref.link.isBase() ? *model.palm : *findLink(model, ref.link)->body;
+    }
+    case BodyRef::Kind::Mount:
+      break;
+  }
+  return *world.connections()[ref.index].mount;
+}
+
+Transform bodyPose(const World& world, const BodyRef& ref) {
+  if (!isValid(world, ref)) throwInvalid(ref);
+  switch (ref.kind) {
+    case BodyRef::Kind::Body:
+      return world.bodies()[ref.index].pose;
+    case BodyRef::Kind::Link: {
+      const Robot& robot = world.robot(ref.index);
+      return ref.link.isBase() ? robot.pose() : robot.linkPose(ref.link);
+    }
+    case BodyRef::Kind::Mount:
+      break;
+  }
+  return world.mountPose(world.connections()[ref.index]);
+}
+
+std::string bodyName(const World& world, const BodyRef& ref) {
+  if (!isValid(world, ref)) throwInvalid(ref);
+  switch (ref.kind) {
+    case BodyRef::Kind::Body:
+      return world.bodies()[ref.index].name;
+    case BodyRef::Kind::Link: {
+      const RobotModel& model = world.robot(ref.index).model();
+      return ref.link.isBase() ? model.name + "_palm" : findLink(model, ref.link)->name;
+    }
+    case BodyRef::Kind::Mount:
+      break;
+  }
+  return world.robot(world.connections()[ref.index].childRobot).name() + "_mount";
+}
+
+std::vector<BodyRef> worldBodies(const World& world) {
+  std::vector<BodyRef> refs;
+  auto add = [&](const BodyRef& ref) {
+    if (isValid(world, ref) && bodyModel(world, ref).mesh) refs.push_back(ref);
+  };
+  for (int b = 0; b < static_cast<int>(world.bodies().size()); ++b) add(BodyRef::body(b));
+  for (int r = 0; r < world.robotCount(); ++r) {
+    add(BodyRef::robotBase(r));
+    const auto& chains = world.robot(r).model().chains;
+    for (int c = 0; c < static_cast<int>(chains.size()); ++c)
+      for (int l = 0; l < static_cast<int>(chains[c].links.size()); ++l)
+        add(BodyRef::robotLink(r, {c, l}));
+  }
+  for (int m = 0; m < static_cast<int>(world.connections().size()); ++m) add(BodyRef::mount(m));
+  return refs;
+}
+
+}  // namespace graspkit
