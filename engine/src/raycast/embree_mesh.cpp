@@ -1,0 +1,100 @@
+#include "raycast/embree_mesh.hpp"
+
+#include <mutex>
+#include <unordered_map>
+
+#include "graspkit/error.hpp"
+
+namespace graspkit::raycast {
+
+RTCDevice device() {
+  // Created on first use and kept for the life of the process: scenes outlive any one world.
+  static RTCDevice instance = [] {
+    RTCDevice d = rtcNewDevice(nullptr);
+    if (!d) throw Error("Embree: could not create a device");
+    return d;
+  }();
+  return instance;
+}
+
+EmbreeMesh::EmbreeMesh(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::move(mesh)) {
+  scene_ = rtcNewScene(device());
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry geometry = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  const auto& vertices = mesh_->vertices;
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    bounds_.extend(vertices[i]);
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(vertices[i][k]);
+  }
+  const auto& triangles = mesh_->triangles;
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                           RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                           triangles.size()));
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) t[3 * i + k] = triangles[i][k];
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene_);
+}
+
+EmbreeMesh::~EmbreeMesh() {
+  rtcReleaseScene(scene_);
+}
+
+namespace {
+
+struct NearQuery {
+  void* user;
+  void (*callback)(void*, unsigned);
+};
+
+bool visitPrimitive(RTCPointQueryFunctionArguments* args) {
+  auto* query = static_cast<NearQuery*>(args->userPtr);
+  query->callback(query->user, args->primID);
+  return false;  // the search radius stays as it is
+}
+
+}  // namespace
+
+void EmbreeMesh::forEachNear(const Vector3& center, double radius, Callback callback,
+                             void* user) const {
+  if (mesh_->triangles.empty()) return;
+  // Pad for float rounding of both the stored vertices and the query centre.
+  const double pad = 1e-6 * (center.cwiseAbs().maxCoeff() + bounds_.sizes().maxCoeff()) + 1e-6;
+  RTCPointQuery query;
+  query.x = static_cast<float>(center.x());
+  query.y = static_cast<float>(center.y());
+  query.z = static_cast<float>(center.z());
+  query.time = 0.0f;
+  query.radius = static_cast<float>(radius + pad);
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  NearQuery near{user, callback};
+  rtcPointQuery(scene_, &query, &context, &visitPrimitive, &near);
+}
+
+std::shared_ptr<const EmbreeMesh> embreeMesh(const std::shared_ptr<const TriangleMesh>& mesh) {
+  struct Entry {
+    std::weak_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const EmbreeMesh> embree;
+  };
+  static std::mutex mutex;
+  static std::unordered_map<const TriangleMesh*, Entry> cache;
+  if (!mesh) throw Error("Embree: no mesh");
+  std::lock_guard lock(mutex);
+  auto it = cache.find(mesh.get());
+  if (it != cache.end() && !it->second.mesh.expired()) return it->second.embree;
+  if (it == cache.end()) {
+    // Drop entries of meshes that have died, so the cache never grows without bound.
+    std::erase_if(cache, [](const auto& item) { return item.second.mesh.expired(); });
+  }
+  auto built = std::make_shared<const EmbreeMesh>(mesh);
+  cache[mesh.get()] = Entry{mesh, built};
+  return built;
+}
+
+}  // namespace graspkit::raycast

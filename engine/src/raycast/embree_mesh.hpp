@@ -1,0 +1,52 @@
+#pragma once
+// Internal: a mesh's Embree geometry, built once per TriangleMesh and shared by every world,
+// clone and thread (Embree scenes are read-only after commit). Contact search uses its
+// bounded point queries to find triangle pairs; the ray scene instances it.
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+
+#include "graspkit/mesh.hpp"
+
+namespace graspkit::raycast {
+
+// The process-wide Embree device.
+RTCDevice device();
+
+class EmbreeMesh {
+ public:
+  explicit EmbreeMesh(std::shared_ptr<const TriangleMesh> mesh);
+  ~EmbreeMesh();
+  EmbreeMesh(const EmbreeMesh&) = delete;
+  EmbreeMesh& operator=(const EmbreeMesh&) = delete;
+
+  RTCScene scene() const { return scene_; }
+  const TriangleMesh& mesh() const { return *mesh_; }
+  const Eigen::AlignedBox3d& bounds() const { return bounds_; }
+
+  // Calls visit(triangle index) for every triangle whose bounding box may come within `radius`
+  // of `center` (mesh frame, mm). It may also visit a few farther ones (Embree works in float);
+  // callers test exactly. Thread-safe.
+  template <class Visit>
+  void forEachTriangleNear(const Vector3& center, double radius, Visit&& visit) const {
+    forEachNear(center, radius, &invoke<Visit>, &visit);
+  }
+
+ private:
+  using Callback = void (*)(void* user, unsigned triangle);
+  template <class Visit>
+  static void invoke(void* user, unsigned triangle) {
+    (*static_cast<Visit*>(user))(triangle);
+  }
+  void forEachNear(const Vector3& center, double radius, Callback callback, void* user) const;
+
+  std::shared_ptr<const TriangleMesh> mesh_;
+  RTCScene scene_ = nullptr;
+  Eigen::AlignedBox3d bounds_;
+};
+
+// The shared Embree geometry of `mesh`, built on first use. Thread-safe.
+std::shared_ptr<const EmbreeMesh> embreeMesh(const std::shared_ptr<const TriangleMesh>& mesh);
+
+}  // namespace graspkit::raycast
