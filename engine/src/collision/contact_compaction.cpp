@@ -1,0 +1,135 @@
+#include "collision/contact_compaction.hpp"
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include <cstdio>
+#include <list>
+#include <optional>
+
+namespace graspkit::collision {
+namespace {
+
+// GraspIt!'s tolerances for grouping contacts by normal and for the perimeter of a group.
+constexpr double kNormalTolerance = 1e-3;  // normals agree when n1 . n2 > 1 - this
+constexpr double kSamePointSq = 0.1;       // mm^2: points closer than this are one
+constexpr double kColinear = 0.1;          // |cross| below this: the points lie on a line
+
+FILE* nullSink() {
+  static FILE* sink = std::fopen("/dev/null", "w");
+  return sink;
+}
+
+// The indices of the 2-D convex hull's vertices, in qhull's order; nullopt if qhull fails.
+std::optional<std::vector<int>> hullVertices2d(std::vector<double>& xy) {
+  qhT qh_storage;
+  qhT* qh = &qh_storage;
+  QHULL_LIB_CHECK
+  qh_zero(qh, nullSink());
+  char flags[] = "qhull n Pp";
+  const int count = static_cast<int>(xy.size() / 2);
+  const int status = qh_new_qhull(qh, 2, count, xy.data(), False, flags, nullptr, nullSink());
+  std::optional<std::vector<int>> result;
+  if (status == 0) {
+    result.emplace();
+    vertexT* vertex;
+    FORALLvertices {
+      result->push_back(qh_pointid(qh, vertex->point));
+    }
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int still_long = 0, total_long = 0;
+  qh_memfreeshort(qh, &still_long, &total_long);
+  return result;
+}
+
+void keepPerimeter(std::vector<RawContact>& group) {
+  if (group.size() < 2) return;
+  // A line first: walk the points, stretching the segment [end1, end2] to cover them.
+  std::size_t end1 = 0, end2 = 1;
+  Vector3 line, test;
+  std::size_t i = 0;
+  for (; i < group.size(); ++i) {
+    line = group[end2].onFirst - group[end1].onFirst;
+    test = group[i].onFirst - group[end1].onFirst;
+    if (test.cross(line).norm() > kColinear) break;
+    const double along = test.dot(line);
+    if (along < 0) end1 = i;
+    if (along > line.squaredNorm()) end2 = i;
+  }
+  if (i == group.size()) {
+    group = {group[end1], group[end2]};
+    return;
+  }
+  // A patch: the 2-D hull in the plane the last two directions span.
+  const Vector3 normal = test.cross(line).normalized();
+  const Vector3 axis1 = test.normalized();
+  const Vector3 axis2 = normal.cross(axis1);
+  std::vector<double> xy;
+  xy.reserve(2 * group.size());
+  for (const RawContact& c : group) {
+    xy.push_back(c.onFirst.dot(axis1));
+    xy.push_back(c.onFirst.dot(axis2));
+  }
+  // GraspIt! loses the whole group when qhull fails here; we keep every point instead.
+  const auto hull = hullVertices2d(xy);
+  if (!hull) return;
+  std::vector<RawContact> perimeter;
+  for (int index : *hull) perimeter.push_back(group[index]);
+  group = std::move(perimeter);
+}
+
+}  // namespace
+
+Vector3 RawContact::normal() const {
+  const Vector3 gap = onFirst - onSecond;
+  const double length = gap.norm();
+  return length > 1e-12 ? Vector3(gap / length) : intoFirst;
+}
+
+void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distance) {
+  const double limit = duplicate_distance * duplicate_distance;
+  auto same = [&](const RawContact& a, const RawContact& b) {
+    return (a.onFirst - b.onFirst).squaredNorm() <= limit &&
+           (a.onSecond - b.onSecond).squaredNorm() <= limit;
+  };
+  // GraspIt! lets each contact meet the later ones in its tree's traversal order, the better
+  // ranked of a duplicate pair surviving. We apply the same rule free of any order: the best
+  // ranked contact stays and removes its duplicates, then the best of the rest, and so on.
+  std::stable_sort(contacts.begin(), contacts.end(),
+                   [](const RawContact& a, const RawContact& b) { return a.rank < b.rank; });
+  std::vector<RawContact> kept;
+  for (const RawContact& c : contacts) {
+    const bool duplicate =
+        std::any_of(kept.begin(), kept.end(), [&](const RawContact& k) { return same(k, c); });
+    if (!duplicate) kept.push_back(c);
+  }
+  contacts = std::move(kept);
+}
+
+void compactContacts(std::vector<RawContact>& contacts) {
+  if (contacts.size() < 2) return;
+  std::vector<std::vector<RawContact>> groups;
+  for (const RawContact& c : contacts) {
+    const Vector3 n = c.normal();
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+      return g.front().normal().dot(n) > 1.0 - kNormalTolerance;
+    });
+    if (group == groups.end()) {
+      groups.push_back({c});
+      continue;
+    }
+    const bool known = std::any_of(group->begin(), group->end(), [&](const RawContact& other) {
+      return (other.onFirst - c.onFirst).squaredNorm() < kSamePointSq;
+    });
+    if (!known) group->push_back(c);
+  }
+  contacts.clear();
+  for (auto& group : groups) {
+    keepPerimeter(group);
+    contacts.insert(contacts.end(), group.begin(), group.end());
+  }
+}
+
+}  // namespace graspkit::collision

@@ -1,0 +1,170 @@
+#include "collision/triangle_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace graspkit::collision {
+namespace {
+
+// Points this close count as the same corner (GraspIt! compares positions with a tolerance).
+constexpr double kSamePointSq = 1e-12;
+
+bool samePoint(const Vector3& p, const Vector3& q) {
+  return (p - q).squaredNorm() < kSamePointSq;
+}
+
+bool isCorner(const Triangle& t, const Vector3& p) {
+  return samePoint(p, t.a) || samePoint(p, t.b) || samePoint(p, t.c);
+}
+
+// Does segment [p, q] meet triangle t (closed)? Non-coplanar case by the plane crossing, the
+// coplanar case by the segment against the triangle's edges and containment.
+bool segmentMeetsTriangle(const Vector3& p, const Vector3& q, const Triangle& t) {
+  const Vector3 n = (t.b - t.a).cross(t.c - t.a);
+  const double scale = n.norm();
+  if (scale == 0.0) return false;  // degenerate triangle: no area to meet
+  const double dp = n.dot(p - t.a) / scale;
+  const double dq = n.dot(q - t.a) / scale;
+  constexpr double kFlat = 1e-12;
+  if ((dp > kFlat && dq > kFlat) || (dp < -kFlat && dq < -kFlat)) return false;
+  auto inside = [&](const Vector3& x) {
+    return n.dot((t.b - t.a).cross(x - t.a)) >= 0 && n.dot((t.c - t.b).cross(x - t.b)) >= 0 &&
+           n.dot((t.a - t.c).cross(x - t.c)) >= 0;
+  };
+  if (std::abs(dp) <= kFlat && std::abs(dq) <= kFlat) {
+    // Coplanar: they meet if an end lies inside or the segment crosses an edge.
+    if (inside(p) || inside(q)) return true;
+    Vector3 c1, c2;
+    for (int i = 0; i < 3; ++i) {
+      if (closestPointsOnSegments(p, q, t.vertex(i), t.vertex((i + 1) % 3), c1, c2) < kSamePointSq)
+        return true;
+    }
+    return false;
+  }
+  const double s = dp / (dp - dq);
+  return inside(p + s * (q - p));
+}
+
+enum class SideTest { Far, OneSide, Straddles };
+
+// Where triangle t lies relative to the plane of `plane`: entirely farther than the threshold on
+// one side, entirely on one side, or touching or crossing it.
+SideTest sideOfPlane(const Triangle& plane, const Triangle& t, double threshold_sq) {
+  const Vector3 n = (plane.b - plane.a).cross(plane.c - plane.a);
+  const double norm_sq = n.squaredNorm();
+  if (norm_sq == 0.0) return SideTest::Straddles;  // degenerate: no plane to test against
+  const double d0 = n.dot(t.a - plane.a), d1 = n.dot(t.b - plane.a), d2 = n.dot(t.c - plane.a);
+  const double reach = std::sqrt(threshold_sq * norm_sq);
+  if ((d0 >= reach && d1 >= reach && d2 >= reach) || (d0 <= -reach && d1 <= -reach && d2 <= -reach))
+    return SideTest::Far;
+  if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return SideTest::OneSide;
+  return SideTest::Straddles;
+}
+
+}  // namespace
+
+Vector3 closestPointOnTriangle(const Triangle& t, const Vector3& p) {
+  // Ericson, Real-Time Collision Detection, 5.1.5: find the Voronoi region of p.
+  const Vector3 ab = t.b - t.a, ac = t.c - t.a, ap = p - t.a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return t.a;
+  const Vector3 bp = p - t.b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return t.b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return t.a + (d1 / (d1 - d3)) * ab;
+  const Vector3 cp = p - t.c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return t.c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return t.a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return t.b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (t.c - t.b);
+  const double sum = va + vb + vc;
+  if (sum <= 0) return t.a;  // degenerate triangle
+  return t.a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+double closestPointsOnSegments(const Vector3& p1, const Vector3& q1, const Vector3& p2,
+                               const Vector3& q2, Vector3& c1, Vector3& c2) {
+  // Ericson 5.1.9: minimise |(p1 + s d1) - (p2 + t d2)| over s, t in [0, 1].
+  const Vector3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  constexpr double kTiny = 1e-18;
+  double s = 0, t = 0;
+  if (a <= kTiny && e <= kTiny) {
+    s = t = 0;
+  } else if (a <= kTiny) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= kTiny) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  c1 = p1 + s * d1;
+  c2 = p2 + t * d2;
+  return (c1 - c2).squaredNorm();
+}
+
+bool trianglesIntersect(const Triangle& t1, const Triangle& t2) {
+  // Two triangles share a point iff an edge of one meets the other.
+  for (int i = 0; i < 3; ++i) {
+    if (segmentMeetsTriangle(t1.vertex(i), t1.vertex((i + 1) % 3), t2)) return true;
+    if (segmentMeetsTriangle(t2.vertex(i), t2.vertex((i + 1) % 3), t1)) return true;
+  }
+  return false;
+}
+
+bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_sq,
+                      std::vector<PointPair>& pairs) {
+  // Cheap rejections first: a triangle wholly beyond the threshold on one side of the other's
+  // plane has no contact with it, and one wholly on one side cannot intersect it.
+  const SideTest side2 = sideOfPlane(t1, t2, threshold_sq);
+  if (side2 == SideTest::Far) return true;
+  const SideTest side1 = sideOfPlane(t2, t1, threshold_sq);
+  if (side1 == SideTest::Far) return true;
+  const bool may_intersect = side1 == SideTest::Straddles && side2 == SideTest::Straddles;
+  if (may_intersect && trianglesIntersect(t1, t2)) return false;
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 v = t2.vertex(i);
+    const Vector3 p = closestPointOnTriangle(t1, v);
+    if ((p - v).squaredNorm() < threshold_sq) pairs.push_back({p, v});
+  }
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 v = t1.vertex(i);
+    const Vector3 p = closestPointOnTriangle(t2, v);
+    if ((p - v).squaredNorm() < threshold_sq && !isCorner(t2, p)) pairs.push_back({v, p});
+  }
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 a1 = t1.vertex(i), b1 = t1.vertex((i + 1) % 3);
+    for (int j = 0; j < 3; ++j) {
+      const Vector3 a2 = t2.vertex(j), b2 = t2.vertex((j + 1) % 3);
+      // Edges whose boxes stay farther apart than the threshold need no closest points.
+      const double reach = std::sqrt(threshold_sq);
+      if ((a1.cwiseMin(b1).array() > a2.cwiseMax(b2).array() + reach).any() ||
+          (a2.cwiseMin(b2).array() > a1.cwiseMax(b1).array() + reach).any())
+        continue;
+      Vector3 c1, c2;
+      if (closestPointsOnSegments(a1, b1, a2, b2, c1, c2) >= threshold_sq) continue;
+      if (samePoint(c1, a1) || samePoint(c1, b1) || samePoint(c2, a2) || samePoint(c2, b2))
+        continue;
+      pairs.push_back({c1, c2});
+    }
+  }
+  return true;
+}
+
+}  // namespace graspkit::collision
