@@ -24,7 +24,7 @@ struct LinkRef {
 };
 
 enum class CollisionRule {
-  Default,          // collides with everything but its chain neighbours
+  Default,          // collides with all but its own chain (see collision_filter.hpp)
   Off,              // removed from collision detection
   OverlappingPair,  // does not collide with `overlapTarget`
 };

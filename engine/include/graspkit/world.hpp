@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "graspkit/body.hpp"
+#include "graspkit/collision_filter.hpp"
 #include "graspkit/robot.hpp"
 
 namespace graspkit {
@@ -67,6 +68,10 @@ class World {
   // The world pose of a connection's mount piece (the child's base).
   Transform mountPose(const Connection& connection) const;
 
+  // Which pairs of bodies collision detection checks; a clone gets its own copy.
+  CollisionFilter& collisionFilter() { return collision_filter_; }
+  const CollisionFilter& collisionFilter() const { return collision_filter_; }
+
   World clone() const { return *this; }
 
  private:
@@ -77,6 +82,7 @@ class World {
   std::vector<WorldRobot> robots_;
   std::vector<Connection> connections_;
   std::optional<Camera> camera_;
+  CollisionFilter collision_filter_;
 };
 
 }  // namespace graspkit

@@ -1,0 +1,42 @@
+#pragma once
+// The collision geometry of one mesh (internal to the collision module): the FCL
+// bounding-volume hierarchy and the mesh's box in its body frame, for a cheap world-box test
+// before any FCL call.
+
+#include <memory>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include "graspkit/collision.hpp"
+
+namespace graspkit {
+
+// OBBRSS: FCL's oriented mesh traversal works in the frame of the first mesh, so no vertex is
+// ever transformed per query; the OBB part gives tight overlap tests for collide, the RSS part
+// cheap lower bounds for distance. bench/collision_bench.cpp compares the other BV types.
+using BoundingVolume = fcl::OBBRSSd;
+using Bvh = fcl::BVHModel<BoundingVolume>;
+
+struct CollisionGeometry {
+  std::shared_ptr<const Bvh> bvh;  // never null
+  Vector3 boxCenter;               // body frame, mm
+  Vector3 boxHalfSize;             // half extents of the axis-aligned box, mm
+};
+
+// The world axis-aligned box of a body-frame box under `pose`: the centre moves with the pose,
+// and the half extents become |R| times the half extents (Arvo's method).
+struct WorldBox {
+  Vector3 center;
+  Vector3 halfSize;
+  bool overlaps(const WorldBox& other) const {
+    return ((center - other.center).cwiseAbs().array() <= (halfSize + other.halfSize).array())
+        .all();
+  }
+};
+
+inline WorldBox worldBox(const CollisionGeometry& geometry, const Transform& pose) {
+  return {pose * geometry.boxCenter, pose.linear().cwiseAbs() * geometry.boxHalfSize};
+}
+
+}  // namespace graspkit
