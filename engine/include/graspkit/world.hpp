@@ -65,6 +65,8 @@ class World {
   void setRobotPose(int robot, const Transform& pose);
   void setDofValues(int robot, std::span<const double> values,
                     LimitPolicy policy = LimitPolicy::Clamp);
+  // Breaks joint `joint` of `robot` away (or re-engages it); mounted robots follow.
+  void setBreakaway(int robot, int joint, BreakawayState state);
   // The world pose of a connection's mount piece (the child's base).
   Transform mountPose(const Connection& connection) const;
 

@@ -81,6 +81,11 @@ void World::setRobotPose(int robot, const Transform& pose) {
   updateChildren(robot);
 }
 
+void World::setBreakaway(int robot, int joint, BreakawayState state) {
+  mutableRobot(robot).setBreakaway(joint, state);
+  updateChildren(robot);
+}
+
 void World::setDofValues(int robot, std::span<const double> values, LimitPolicy policy) {
   mutableRobot(robot).setDofValues(values, policy);
   updateChildren(robot);

@@ -1,0 +1,61 @@
+#pragma once
+// Hand motions that stop at contact, with GraspIt!'s static semantics: autoGrasp closes every
+// DOF along its default velocity until nothing moves; openUntilFree backs the DOFs off until the
+// hand collides with nothing; approachToContact moves the hand along its approach direction
+// until it touches. The contact instant is found by bisection, so a hand that stops touches
+// (closer than the contact threshold) and never interpenetrates.
+
+#include <string>
+#include <vector>
+
+#include "graspkit/contact.hpp"
+
+namespace graspkit {
+
+class World;
+
+struct AutoGraspOptions {
+  // Scales every DOF's default velocity; a negative factor opens instead of closing.
+  double speedFactor = 1.0;
+  bool stopAtContact = false;  // end at the first contact, as GraspIt!'s stopAtContact
+  int maxIterations = 500;     // GraspIt!'s failsafe
+};
+
+enum class MotionEnd {
+  Settled,             // nothing moves any more
+  Contact,             // stopAtContact and a contact appeared (or approach touched)
+  IterationLimit,      // the failsafe ended it
+  InterpolationError,  // the contact instant could not be bracketed (GraspIt!'s "Robot joint
+                       // interpolation error")
+  NoContact,           // approachToContact went its whole distance without touching
+};
+
+struct AutoGraspResult {
+  std::vector<double> dofValues;
+  std::vector<Contact> contacts;  // seen from the hand's links, after the motion
+  int iterations = 0;
+  MotionEnd end = MotionEnd::Settled;
+};
+
+// Closes robot `robot`'s DOFs in `world` (the world is changed). Throws graspkit::Error for a bad
+// robot index or a robot that is not a hand (no chains, or a "Robot" type without fingers).
+AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options = {});
+
+// Opens the DOFs (against their default velocity) in chunks until the hand collides with
+// nothing or every DOF is at its open limit. Returns whether the hand ends collision-free.
+bool openUntilFree(World& world, int robot);
+
+struct ApproachOptions {
+  double maxDistance = 500.0;              // mm
+  double step = 50.0 * kContactThreshold;  // mm, GraspIt!'s 10 mm
+};
+
+// Moves the hand along its approach direction (the palm's approach frame z) until it touches
+// something. Throws graspkit::Error when the robot is in collision before it moves.
+AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions& options = {});
+
+// The contacts between robot `robot`'s links and every other body the collision filter pairs
+// them with, seen from the links. With `object`, only contacts with that body.
+std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef* object = nullptr);
+
+}  // namespace graspkit

@@ -1,0 +1,362 @@
+#include "graspkit/autograsp.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "graspkit/collision.hpp"
+#include "graspkit/contact_search.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit {
+namespace {
+
+constexpr double kStepScale = 0.01;      // GraspIt!: a step is velocity * speed * 0.01
+constexpr double kContactInstant = 0.1;  // mm: bisection stops once closer than this
+constexpr int kMaxBisections = 40;
+constexpr double kBreakawayLag = 1e-5;
+
+// The hand's links (base first) and, for each, the bodies the collision filter pairs it with.
+struct HandBodies {
+  std::vector<BodyRef> links;
+  std::vector<std::vector<BodyRef>> partners;
+};
+
+HandBodies handBodies(const World& world, int robot) {
+  HandBodies hand;
+  const std::vector<BodyRef> all = worldBodies(world);
+  for (const BodyRef& ref : all) {
+    if (!ref.isLink() || ref.index != robot) continue;
+    hand.links.push_back(ref);
+    auto& partners = hand.partners.emplace_back();
+    for (const BodyRef& other : all)
+      if (world.collisionFilter().isActive(world, ref, other)) partners.push_back(other);
+  }
+  return hand;
+}
+
+void requireHand(const World& world, int robot) {
+  const Robot& r = world.robot(robot);  // throws for a bad index
+  if (r.model().chains.empty() || r.dofCount() == 0) {
+    throw Error(fmt::format("robot '{}' has no fingers to close: autograsp needs chains and DOFs",
+                            r.name()));
+  }
+}
+
+// The joints of `link`'s chain from the chain's first joint to the link's last joint: what
+// stops when the link touches something.
+std::vector<int> jointsBehind(const RobotModel& model, const LinkRef& link) {
+  std::vector<int> joints;
+  if (link.isBase()) return joints;
+  const KinematicChain& chain = model.chains[link.chain];
+  const int last = chain.links[link.link].lastJoint;
+  for (int j = 0; j <= last; ++j) joints.push_back(chain.firstJoint + j);
+  return joints;
+}
+
+class Closing {
+ public:
+  Closing(World& world, int robot, const AutoGraspOptions& options)
+      : world_(world), robot_(robot), hand_(handBodies(world, robot)) {
+    const RobotModel& model = world.robot(robot).model();
+    const int dofs = static_cast<int>(model.dofs.size());
+    step_.resize(dofs);
+    target_.resize(dofs);
+    moving_.assign(dofs, false);
+    joint_stopped_.assign(model.jointCount(), false);
+    for (int d = 0; d < dofs; ++d) {
+      const Dof& dof = model.dofs[d];
+      const double velocity = options.speedFactor * dof.defaultVelocity;
+      step_[d] = velocity * kStepScale;
+      target_[d] = velocity >= 0 ? dof.max : dof.min;
+      moving_[d] = velocity != 0.0;
+    }
+  }
+
+  const HandBodies& hand() const { return hand_; }
+
+  // One step of every moving DOF. Returns false when nothing moves any more.
+  bool step(std::vector<double>& from, std::vector<double>& to) {
+    refreshMoving();
+    const Robot& robot = world_.robot(robot_);
+    from.assign(robot.dofValues().begin(), robot.dofValues().end());
+    to = from;
+    bool any = false;
+    for (std::size_t d = 0; d < to.size(); ++d) {
+      if (!moving_[d]) continue;
+      const double next = from[d] + step_[d];
+      to[d] = step_[d] > 0 ? std::min(next, target_[d]) : std::max(next, target_[d]);
+      if (std::abs(to[d] - from[d]) < 1e-12) {
+        moving_[d] = false;
+        to[d] = from[d];
+      } else {
+        any = true;
+      }
+    }
+    return any;
+  }
+
+  void apply(const std::vector<double>& values) {
+    world_.setDofValues(robot_, values, LimitPolicy::Clamp);
+  }
+
+  // Active pairs (link, partner) whose surfaces intersect, among links that moved.
+  std::vector<std::pair<BodyRef, BodyRef>> collisions(const std::vector<bool>& moved) const {
+    std::vector<std::pair<BodyRef, BodyRef>> pairs;
+    for (std::size_t i = 0; i < hand_.links.size(); ++i) {
+      if (!moved[i]) continue;
+      for (const BodyRef& other : hand_.partners[i])
+        if (collide(world_, hand_.links[i], other)) pairs.emplace_back(hand_.links[i], other);
+    }
+    return pairs;
+  }
+
+  std::vector<bool> movedLinks(const std::vector<Transform>& before) const {
+    std::vector<bool> moved(hand_.links.size());
+    for (std::size_t i = 0; i < moved.size(); ++i)
+      moved[i] = !bodyPose(world_, hand_.links[i]).isApprox(before[i], 1e-14);
+    return moved;
+  }
+
+  std::vector<Transform> linkPoses() const {
+    std::vector<Transform> poses;
+    for (const BodyRef& link : hand_.links) poses.push_back(bodyPose(world_, link));
+    return poses;
+  }
+
+  // Stops the joints behind every link touching something whose next motion the contact blocks.
+  void stopBlockedLinks(const std::vector<Contact>& contacts) {
+    const Robot& robot = world_.robot(robot_);
+    std::vector<double> ahead(robot.dofValues().begin(), robot.dofValues().end());
+    for (std::size_t d = 0; d < ahead.size(); ++d)
+      if (moving_[d]) ahead[d] += step_[d];
+    Robot trial = robot;
+    trial.setDofValues(ahead, LimitPolicy::Clamp);
+    for (const Contact& contact : contacts) {
+      if (!contact.body1.isLink() || contact.body1.index != robot_) continue;
+      const Transform now = robot.linkPose(contact.body1.link);
+      const Transform next = trial.linkPose(contact.body1.link);
+      const Vector3 motion = next * (now.inverse() * contact.position1) - contact.position1;
+      // The normal points into the link: moving against it pushes into the other body.
+      if (motion.dot(contact.normal) < 0)
+        stopJoints(jointsBehind(robot.model(), contact.body1.link));
+    }
+  }
+
+  // Stops the joints behind each touching link, whatever its motion (the contact instant).
+  void stopTouchingLinks(const std::vector<Contact>& contacts) {
+    for (const Contact& contact : contacts)
+      if (contact.body1.isLink() && contact.body1.index == robot_)
+        stopJoints(jointsBehind(world_.robot(robot_).model(), contact.body1.link));
+  }
+
+ private:
+  void stopJoints(const std::vector<int>& joints) {
+    const Robot& robot = world_.robot(robot_);
+    const RobotModel& model = robot.model();
+    for (int j : joints) {
+      if (joint_stopped_[j]) continue;
+      joint_stopped_[j] = true;
+      const int d = model.joint(j).dof;
+      if (model.dofs[d].type == DofType::Rigid) {
+        moving_[d] = false;
+      } else if (!robot.breakaway()[j].engaged) {
+        // The joint holds where it is while the DOF goes on: it breaks away at this value.
+        world_.setBreakaway(robot_, j, {true, robot.dofValues()[d]});
+      }
+    }
+  }
+
+  // A DOF stops when every joint it drives is stopped (a rigid one at its first stopped joint).
+  void refreshMoving() {
+    const RobotModel& model = world_.robot(robot_).model();
+    for (std::size_t d = 0; d < moving_.size(); ++d) {
+      if (!moving_[d]) continue;
+      const auto& joints = model.dofs[d].joints;
+      moving_[d] = joints.empty() || !std::all_of(joints.begin(), joints.end(),
+                                                  [&](int j) { return joint_stopped_[j]; });
+    }
+  }
+
+  World& world_;
+  int robot_;
+  HandBodies hand_;
+  std::vector<double> step_, target_;
+  std::vector<bool> moving_;
+  std::vector<bool> joint_stopped_;
+};
+
+std::vector<double> interpolate(const std::vector<double>& a, const std::vector<double>& b,
+                                double t) {
+  std::vector<double> out(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) out[i] = a[i] + t * (b[i] - a[i]);
+  return out;
+}
+
+double closestDistance(const World& world, const std::vector<std::pair<BodyRef, BodyRef>>& pairs) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (const auto& [a, b] : pairs) closest = std::min(closest, distance(world, a, b).distance);
+  return closest;
+}
+
+}  // namespace
+
+std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef* object) {
+  world.robot(robot);  // range check
+  const HandBodies hand = handBodies(world, robot);
+  std::vector<Contact> contacts;
+  for (std::size_t i = 0; i < hand.links.size(); ++i) {
+    for (const BodyRef& other : hand.partners[i]) {
+      if (object && !(other == *object)) continue;
+      ContactResult found = findContacts(world, hand.links[i], other);
+      contacts.insert(contacts.end(), found.contacts.begin(), found.contacts.end());
+    }
+  }
+  return contacts;
+}
+
+AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options) {
+  requireHand(world, robot);
+  Closing closing(world, robot, options);
+  AutoGraspResult result;
+  closing.stopBlockedLinks(robotContacts(world, robot));
+
+  std::vector<double> from, to;
+  for (;;) {
+    if (result.iterations >= options.maxIterations) {
+      result.end = MotionEnd::IterationLimit;
+      break;
+    }
+    if (!closing.step(from, to)) break;
+    ++result.iterations;
+    const std::vector<Transform> before = closing.linkPoses();
+    closing.apply(to);
+    const std::vector<bool> moved = closing.movedLinks(before);
+    auto colliding = closing.collisions(moved);
+    if (colliding.empty()) continue;
+
+    // Bracket the contact instant: free at lo, colliding at hi.
+    double lo = 0.0, hi = 1.0;
+    bool found = false;
+    for (int k = 0; k < kMaxBisections && !found; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      closing.apply(interpolate(from, to, mid));
+      auto now = closing.collisions(moved);
+      if (!now.empty()) {
+        hi = mid;
+        colliding = std::move(now);
+      } else {
+        lo = mid;
+        found = closestDistance(world, colliding) < kContactInstant;
+      }
+    }
+    if (!found) {
+      closing.apply(interpolate(from, to, lo));
+      result.end = MotionEnd::InterpolationError;
+      break;
+    }
+    const std::vector<Contact> contacts = robotContacts(world, robot);
+    closing.stopTouchingLinks(contacts);
+    if (options.stopAtContact && !contacts.empty()) {
+      result.end = MotionEnd::Contact;
+      break;
+    }
+  }
+  const Robot& hand = world.robot(robot);
+  result.dofValues.assign(hand.dofValues().begin(), hand.dofValues().end());
+  result.contacts = robotContacts(world, robot);
+  return result;
+}
+
+bool openUntilFree(World& world, int robot) {
+  requireHand(world, robot);
+  const HandBodies hand = handBodies(world, robot);
+  auto free = [&] {
+    for (std::size_t i = 0; i < hand.links.size(); ++i)
+      for (const BodyRef& other : hand.partners[i])
+        if (collide(world, hand.links[i], other)) return false;
+    return true;
+  };
+  const RobotModel& model = world.robot(robot).model();
+  // GraspIt!'s quickOpen: chunks of ten autograsp steps against the closing direction.
+  for (int chunk = 0; chunk < 1000; ++chunk) {
+    if (free()) return true;
+    const Robot& r = world.robot(robot);
+    std::vector<double> values(r.dofValues().begin(), r.dofValues().end());
+    bool moved = false;
+    for (std::size_t d = 0; d < values.size(); ++d) {
+      const Dof& dof = model.dofs[d];
+      const double open = -dof.defaultVelocity * kStepScale * 10.0;
+      const double next = std::clamp(values[d] + open, dof.min, dof.max);
+      moved = moved || next != values[d];
+      values[d] = next;
+    }
+    if (!moved) break;
+    for (std::size_t j = 0; j < r.breakaway().size(); ++j)
+      world.setBreakaway(robot, static_cast<int>(j), {});
+    world.setDofValues(robot, values);
+  }
+  return free();
+}
+
+AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions& options) {
+  world.robot(robot);  // range check
+  const HandBodies hand = handBodies(world, robot);
+  auto colliding = [&] {
+    std::vector<std::pair<BodyRef, BodyRef>> pairs;
+    for (std::size_t i = 0; i < hand.links.size(); ++i)
+      for (const BodyRef& other : hand.partners[i])
+        if (collide(world, hand.links[i], other)) pairs.emplace_back(hand.links[i], other);
+    return pairs;
+  };
+  if (!colliding().empty()) {
+    throw Error(fmt::format("robot '{}' collides before it approaches", world.robot(robot).name()));
+  }
+  const Transform start = world.robot(robot).pose();
+  const Vector3 direction =
+      start.linear() * world.robot(robot).model().approachFrame().linear().col(2);
+  auto placeAt = [&](double s) {
+    Transform pose = start;
+    pose.translation() += s * direction;
+    world.setRobotPose(robot, pose);
+  };
+  AutoGraspResult result;
+  result.end = MotionEnd::NoContact;
+  for (double s = 0.0; s < options.maxDistance;) {
+    const double next = std::min(s + options.step, options.maxDistance);
+    placeAt(next);
+    ++result.iterations;
+    auto pairs = colliding();
+    if (pairs.empty()) {
+      s = next;
+      continue;
+    }
+    double lo = s, hi = next;
+    result.end = MotionEnd::InterpolationError;
+    for (int k = 0; k < kMaxBisections; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      placeAt(mid);
+      auto now = colliding();
+      if (!now.empty()) {
+        hi = mid;
+        pairs = std::move(now);
+      } else {
+        lo = mid;
+        if (closestDistance(world, pairs) < kContactInstant) {
+          result.end = MotionEnd::Contact;
+          break;
+        }
+      }
+    }
+    placeAt(lo);
+    break;
+  }
+  const Robot& r = world.robot(robot);
+  result.dofValues.assign(r.dofValues().begin(), r.dofValues().end());
+  result.contacts = robotContacts(world, robot);
+  return result;
+}
+
+}  // namespace graspkit
