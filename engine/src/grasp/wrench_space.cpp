@@ -1,0 +1,118 @@
+#include "graspkit/wrench_space.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "grasp/qhull_hull.hpp"
+#include "graspkit/error.hpp"
+
+namespace graspkit {
+namespace {
+
+// GraspIt!'s qhull options without the output ones ("Pp n"): Qx exact pre-merges, QJ joggled
+// input, C-0.0001 a centrum radius for merging.
+constexpr const char* kGraspItOptions = "Qx QJ C-0.0001";
+
+// The number of points, as a double so that a huge Minkowski sum cannot overflow.
+double pointCount(const std::vector<std::vector<Vector6>>& sets, WrenchSpaceType type) {
+  double count = type == WrenchSpaceType::L1 ? 0.0 : 1.0;
+  for (const auto& set : sets) {
+    const double k = static_cast<double>(set.size());
+    count = type == WrenchSpaceType::L1 ? count + k : count * (k + 1.0);
+  }
+  return count;
+}
+
+// True when some plane through the origin has every point at least `margin` beyond it, i.e.
+// the origin is outside conv(points) by at least `margin`. Gilbert's algorithm: x walks
+// through conv(points) towards the point nearest the origin; the point s minimising x . s
+// bounds that distance from below by x . s / |x|. Gives up (false) when x comes within
+// `margin` of the origin or after a fixed number of steps, leaving the answer to qhull.
+bool originClearlyOutside(const std::vector<double>& coords, int dim, double margin) {
+  using Vec = Eigen::VectorXd;
+  const Eigen::Index n = static_cast<Eigen::Index>(coords.size()) / dim;
+  const Eigen::Map<const Eigen::MatrixXd> points(coords.data(), dim, n);
+  Vec x = points.rowwise().mean();
+  for (int step = 0; step < 1000; ++step) {
+    const double norm = x.norm();
+    if (norm < margin) return false;
+    Eigen::Index nearest = 0;
+    const double support = (x.transpose() * points).minCoeff(&nearest);
+    if (support >= margin * norm) return true;
+    const Vec d = x - points.col(nearest);
+    const double dd = d.squaredNorm();
+    if (dd == 0.0) return false;
+    x -= std::clamp(x.dot(d) / dd, 0.0, 1.0) * d;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<Vector6> wrenchSpacePoints(const std::vector<std::vector<Vector6>>& contactWrenches,
+                                       WrenchSpaceType type, std::size_t maxPoints) {
+  const double count = pointCount(contactWrenches, type);
+  if (count > static_cast<double>(maxPoints))
+    throw Error(
+        fmt::format("the {} wrench space of {} contacts would have {:.0f} points, more "
+                    "than the limit of {}",
+                    type == WrenchSpaceType::L1 ? "L1" : "L-infinity", contactWrenches.size(),
+                    count, maxPoints));
+
+  std::vector<Vector6> points;
+  points.reserve(static_cast<std::size_t>(count));
+  if (type == WrenchSpaceType::L1) {
+    for (const auto& set : contactWrenches) points.insert(points.end(), set.begin(), set.end());
+    return points;
+  }
+  // Minkowski sum of ({0} U set) over the sets, one set at a time.
+  points.push_back(Vector6::Zero());
+  for (const auto& set : contactWrenches) {
+    const std::size_t previous = points.size();
+    for (const Vector6& w : set)
+      for (std::size_t i = 0; i < previous; ++i) points.push_back(points[i] + w);
+  }
+  return points;
+}
+
+GraspWrenchSpace graspWrenchSpace(const std::vector<std::vector<Vector6>>& contactWrenches,
+                                  const WrenchSpaceOptions& options) {
+  GraspWrenchSpace gws;
+  gws.type = options.type;
+  gws.dimensions = options.dimensions;
+  int dim = 0;
+  for (bool used : options.dimensions) dim += used ? 1 : 0;
+  if (dim < 2) {
+    gws.failure = fmt::format("a wrench space needs at least 2 dimensions, {} selected", dim);
+    return gws;
+  }
+  const std::vector<Vector6> points =
+      wrenchSpacePoints(contactWrenches, options.type, options.maxPoints);
+  if (contactWrenches.empty() || points.empty()) {
+    gws.failure = "no contact wrenches";
+    return gws;
+  }
+
+  std::vector<double> coords;
+  coords.reserve(points.size() * static_cast<std::size_t>(dim));
+  for (const Vector6& p : points)
+    for (int d = 0; d < 6; ++d)
+      if (options.dimensions[d]) coords.push_back(p[d]);
+  if (options.method == HullMethod::SkipNonForceClosure) {
+    double scale = 1.0;
+    for (const Vector6& p : points) scale = std::max(scale, p.norm());
+    if (originClearlyOutside(coords, dim, kForceClosureMargin * scale)) {
+      gws.pointCount = points.size();
+      gws.originOutside = true;
+      gws.volume = gws.area = std::numeric_limits<double>::quiet_NaN();
+      gws.failure = "not force closure: the origin is outside the wrenches (hull skipped)";
+      return gws;
+    }
+  }
+  detail::qhullHull(coords, dim, kGraspItOptions, gws);
+  return gws;
+}
+
+}  // namespace graspkit
