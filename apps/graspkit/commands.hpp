@@ -22,4 +22,23 @@ struct InfoOptions {
 void addInfoCommand(CLI::App& app, InfoOptions& options);
 int runInfo(const InfoOptions& options, std::ostream& out);
 
+struct GraspOptions {
+  std::filesystem::path world;
+  std::vector<std::filesystem::path> roots;
+  int robot = 0;
+  std::string object;  // body name; the first graspable body when empty
+  std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
+  std::string dofs;    // comma-separated DOF values
+  bool autograsp = false;
+  std::string gws = "L1";
+  bool json = false;
+};
+
+void addGraspCommand(CLI::App& app, GraspOptions& options);
+int runGrasp(const GraspOptions& options, std::ostream& out);
+
+// "1,2.5,-3" -> {1, 2.5, -3}; throws graspkit::Error naming `option` for anything else
+// (empty items, trailing text, NaN or infinity).
+std::vector<double> parseNumberList(const std::string& text, const std::string& option);
+
 }  // namespace graspkit::cli

@@ -23,28 +23,6 @@ json pose(const std::string& name, const Transform& t) {
   return {{"name", name}, {"translation", vec(t.translation())}, {"quaternion", quat(t)}};
 }
 
-std::vector<double> parseDofs(const std::string& text) {
-  std::vector<double> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string token = text.substr(start, comma - start);
-    std::size_t used = 0;
-    double value = 0;
-    try {
-      value = std::stod(token, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != token.size() || !std::isfinite(value)) {
-      throw Error(fmt::format("--dofs: '{}' is not a number", token));
-    }
-    values.push_back(value);
-    start = comma + 1;
-  }
-  return values;
-}
-
 json bodyJson(const Body& body) {
   const BodyModel& m = *body.model;
   json j = pose(body.name, body.pose);
@@ -164,7 +142,8 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
 
 int runInfo(const InfoOptions& options, std::ostream& out) {
   World world = loadAnyFile(options.file, LoadOptions{options.roots});
-  if (!options.dofs.empty()) world.setDofValues(options.robot, parseDofs(options.dofs));
+  if (!options.dofs.empty())
+    world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
   json j = worldJson(world);
   j["file"] = options.file.string();
   if (options.json) {

@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
 
   graspkit::cli::InfoOptions info;
   graspkit::cli::addInfoCommand(app, info);
+  graspkit::cli::GraspOptions grasp;
+  graspkit::cli::addGraspCommand(app, grasp);
 
   try {
     app.parse(argc, argv);
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("graspkit: %l: %v");
   try {
     if (app.got_subcommand("info")) return graspkit::cli::runInfo(info, std::cout);
+    if (app.got_subcommand("grasp")) return graspkit::cli::runGrasp(grasp, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;

@@ -1,0 +1,133 @@
+// graspkit grasp: place a hand, optionally close it, and report its contacts and grasp quality.
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "graspkit/autograsp.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit::cli {
+namespace {
+
+using nlohmann::json;
+
+BodyRef findObject(const World& world, const std::string& name) {
+  const auto& bodies = world.bodies();
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
+    if (name.empty() ? bodies[i].isDynamic() : bodies[i].name == name) return BodyRef::body(i);
+  }
+  if (name.empty()) throw Error("the world has no graspable body to grasp");
+  std::string known;
+  for (const Body& b : bodies) known += (known.empty() ? "" : ", ") + b.name;
+  throw Error(fmt::format("--object: no body '{}' in the world (bodies: {})", name, known));
+}
+
+Transform parsePose(const std::string& text) {
+  const std::vector<double> v = parseNumberList(text, "--pose");
+  if (v.size() != 7) {
+    throw Error(fmt::format("--pose: expected tx,ty,tz,qw,qx,qy,qz (7 numbers), got {}", v.size()));
+  }
+  const Quaternion q(v[3], v[4], v[5], v[6]);
+  if (q.norm() < 1e-9) throw Error("--pose: the quaternion is zero");
+  return makeTransform(Vector3(v[0], v[1], v[2]), q.normalized());
+}
+
+WrenchSpaceType parseGws(const std::string& text) {
+  if (text == "L1") return WrenchSpaceType::L1;
+  if (text == "Linf" || text == "LInfinity") return WrenchSpaceType::LInfinity;
+  throw Error(fmt::format("--gws: '{}' is not L1 or Linf", text));
+}
+
+json vec(const Vector3& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
+
+json graspJson(const World& world, const Grasp& grasp) {
+  json contacts = json::array();
+  for (const Contact& c : grasp.contacts) {
+    contacts.push_back({{"link", bodyName(world, c.body1)},
+                        {"body", bodyName(world, c.body2)},
+                        {"position", vec(c.position1)},
+                        {"normal", vec(c.normal)},
+                        {"mu", c.mu}});
+  }
+  const auto dofs = world.robot(grasp.robot).dofValues();
+  json j = {{"contacts", contacts},
+            {"dof_values", std::vector<double>(dofs.begin(), dofs.end())},
+            {"epsilon", grasp.epsilon},
+            {"volume", grasp.volume},
+            {"force_closure", grasp.forceClosure}};
+  if (!grasp.wrenchSpace.built) j["wrench_space_failure"] = grasp.wrenchSpace.failure;
+  return j;
+}
+
+void printText(const json& j, std::ostream& out) {
+  out << fmt::format("{} contacts\n", j["contacts"].size());
+  for (const auto& c : j["contacts"]) {
+    const auto& p = c["position"];
+    const auto& n = c["normal"];
+    out << fmt::format(
+        "  {:<24} {:<12} p [{:.4f} {:.4f} {:.4f}]  n [{:.5f} {:.5f} {:.5f}]  mu {}\n",
+        c["link"].get<std::string>(), c["body"].get<std::string>(), p[0].get<double>(),
+        p[1].get<double>(), p[2].get<double>(), n[0].get<double>(), n[1].get<double>(),
+        n[2].get<double>(), c["mu"].get<double>());
+  }
+  out << "dof values:";
+  for (const auto& v : j["dof_values"]) out << fmt::format(" {:.6f}", v.get<double>());
+  out << fmt::format("\nepsilon {:.7g}\nvolume {:.7g}\nforce closure {}\n",
+                     j["epsilon"].get<double>(), j["volume"].get<double>(),
+                     j["force_closure"].get<bool>() ? "yes" : "no");
+  if (j.contains("wrench_space_failure"))
+    out << "wrench space: " << j["wrench_space_failure"].get<std::string>() << "\n";
+}
+
+}  // namespace
+
+void addGraspCommand(CLI::App& app, GraspOptions& options) {
+  CLI::App* cmd =
+      app.add_subcommand("grasp", "Place a hand, optionally close it, report contacts and quality");
+  cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--root", options.roots, "Folder that world <filename> paths are relative to");
+  cmd->add_option("--robot", options.robot, "Which robot is the hand (0-based)")->default_val(0);
+  cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
+  cmd->add_option("--pose", options.pose, "Hand pose in the world: tx,ty,tz,qw,qx,qy,qz (mm)");
+  cmd->add_option("--dofs", options.dofs, "DOF values, comma-separated (rad or mm)");
+  cmd->add_flag("--autograsp", options.autograsp, "Close the hand until it stops (GraspIt!'s)");
+  cmd->add_option("--gws", options.gws, "Grasp wrench space: L1 or Linf")->default_val("L1");
+  cmd->add_flag("--json", options.json, "Print one JSON object");
+}
+
+int runGrasp(const GraspOptions& options, std::ostream& out) {
+  const WrenchSpaceType gws = parseGws(options.gws);  // before the (slower) load
+  World world = loadWorldFile(options.world, LoadOptions{options.roots});
+  world.robot(options.robot);  // range check with a clear message
+  const BodyRef object = findObject(world, options.object);
+  if (!options.pose.empty()) world.setRobotPose(options.robot, parsePose(options.pose));
+  if (!options.dofs.empty()) {
+    world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
+  }
+  std::vector<Contact> contacts;
+  if (options.autograsp) {
+    contacts = autoGrasp(world, options.robot).contacts;
+  } else {
+    contacts = robotContacts(world, options.robot);
+  }
+  // Only the contacts with the object make the grasp; others are reported with it too.
+  GraspRequest request;
+  request.wrenchSpace.type = gws;
+  Grasp grasp = analyzeGrasp(world, options.robot, object, contacts, request);
+  const json j = graspJson(world, grasp);
+  if (options.json) {
+    out << j.dump(2) << "\n";
+  } else {
+    printText(j, out);
+  }
+  return 0;
+}
+
+}  // namespace graspkit::cli

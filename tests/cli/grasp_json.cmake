@@ -1,0 +1,39 @@
+# `graspkit grasp --autograsp --json` on GraspIt!'s plannerMug reproduces GraspIt!'s own figures
+# (../shared/reference/graspit-figures.json): 6 contacts and no force closure as loaded; 4
+# contacts, force closure and epsilon 0.0027506 from the recorded pose and DOFs.
+if(NOT EXISTS ${SHARED_DIR}/graspit-data/worlds/plannerMug.xml)
+  message(WARNING "SKIPPED: ${SHARED_DIR}/graspit-data is absent")
+  return()
+endif()
+set(world ${SHARED_DIR}/graspit-data/worlds/plannerMug.xml)
+
+execute_process(COMMAND ${GRASPKIT} -q grasp ${world} --autograsp --json
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "grasp failed (${rc}): ${err}")
+endif()
+string(JSON count LENGTH "${out}" contacts)
+string(JSON closure GET "${out}" force_closure)
+string(JSON eps GET "${out}" epsilon)
+string(JSON link GET "${out}" contacts 0 link)
+string(JSON mu GET "${out}" contacts 0 mu)
+if(NOT count EQUAL 6 OR closure OR NOT eps EQUAL -1 OR NOT link MATCHES "^Barrett_chain"
+   OR NOT mu EQUAL 0.3)
+  message(FATAL_ERROR "as loaded: ${count} contacts, closure ${closure}, eps ${eps}, ${link} mu ${mu}")
+endif()
+
+execute_process(COMMAND ${GRASPKIT} -q grasp ${world} --autograsp --json
+  --pose 43.5961787202,-51.0196446134,190.547088948,0.230240016789,-0.849067984447,-0.365073354129,0.304621960077
+  --dofs 1.59401061648,0.737072671249,0.737072671249,0.737072671249
+  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "grasp failed (${rc}): ${err}")
+endif()
+string(JSON count LENGTH "${out}" contacts)
+string(JSON closure GET "${out}" force_closure)
+string(JSON eps GET "${out}" epsilon)
+string(JSON dof2 GET "${out}" dof_values 2)
+if(NOT count EQUAL 4 OR NOT closure OR eps LESS 0.002723 OR eps GREATER 0.002778
+   OR dof2 LESS 1.4101 OR dof2 GREATER 1.4103)
+  message(FATAL_ERROR "force_closure_1: ${count} contacts, closure ${closure}, eps ${eps}, dof2 ${dof2}")
+endif()
