@@ -1,6 +1,7 @@
 #include "graspkit/collision_filter.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -90,6 +91,18 @@ bool connectionAllows(const World& world, const Connection& c, int mount_index, 
   return true;
 }
 
+std::string describe(const BodyRef& ref) {
+  switch (ref.kind) {
+    case BodyRef::Kind::Body:
+      return fmt::format("body {}", ref.index);
+    case BodyRef::Kind::Link:
+      return fmt::format("robot {} chain {} link {}", ref.index, ref.link.chain, ref.link.link);
+    case BodyRef::Kind::Mount:
+      break;
+  }
+  return fmt::format("the mount piece of connection {}", ref.index);
+}
+
 }  // namespace
 
 void CollisionFilter::setBodyEnabled(const BodyRef& body, bool enabled) {
@@ -134,12 +147,7 @@ bool robotRulesAllow(const World& world, const BodyRef& a, const BodyRef& b) {
 bool CollisionFilter::isActive(const World& world, const BodyRef& a, const BodyRef& b) const {
   for (const BodyRef* ref : {&a, &b}) {
     if (!isValid(world, *ref)) {
-      throw Error(fmt::format(
-          "collision filter: {} is not a body of the world",
-          ref->kind == BodyRef::Kind::Body ? fmt::format("body {}", ref->index)
-          : ref->kind == BodyRef::Kind::Link
-              ? fmt::format("robot {} link ({}, {})", ref->index, ref->link.chain, ref->link.link)
-              : fmt::format("mount {}", ref->index)));
+      throw Error(fmt::format("collision filter: {} is not in the world", describe(*ref)));
     }
   }
   if (a == b) return false;

@@ -1,0 +1,509 @@
+// Collision queries and the collision filter against independent truths: unit cubes placed by
+// hand (overlap, closed-form distances, touching), degenerate meshes, GraspIt!'s pair rules on
+// this repository's bh8 hand and on small robots written here, shared BVHs across clones, and
+// the BVH cache under two threads.
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "graspkit/collision.hpp"
+#include "graspkit/collision_filter.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/world.hpp"
+#include "test_paths.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kTol = 1e-9;
+
+// ---------------------------------------------------------------------------------------------
+// Bodies built by hand
+
+// The cube [0, s]^3, twelve outward-facing triangles.
+std::shared_ptr<TriangleMesh> cubeMesh(double s = 1.0) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < 8; ++i)
+    mesh->vertices.emplace_back(s * (i & 1), s * ((i >> 1) & 1), s * (i >> 2));
+  // Each face as two triangles, counter-clockwise seen from outside.
+  mesh->triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                     {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return mesh;
+}
+
+std::shared_ptr<const BodyModel> modelOf(std::shared_ptr<const TriangleMesh> mesh,
+                                         const std::string& name) {
+  auto model = std::make_shared<BodyModel>();
+  model->name = name;
+  model->mesh = std::move(mesh);
+  return model;
+}
+
+Transform translation(double x, double y, double z) {
+  Transform t = Transform::Identity();
+  t.translation() = Vector3(x, y, z);
+  return t;
+}
+
+Transform rotZ(double angle) {
+  Transform t = Transform::Identity();
+  t.rotate(Eigen::AngleAxisd(angle, Vector3::UnitZ()));
+  return t;
+}
+
+int addBody(World& world, std::shared_ptr<const TriangleMesh> mesh, const Transform& pose,
+            BodyKind kind = BodyKind::Graspable, const std::string& name = "cube") {
+  Body body;
+  body.model = modelOf(std::move(mesh), name);
+  body.kind = kind;
+  body.name = name;
+  body.pose = pose;
+  return world.addBody(body);
+}
+
+// Two unit cubes, the first at the origin, the second at `pose`.
+World twoCubes(const Transform& pose) {
+  World world;
+  addBody(world, cubeMesh(), Transform::Identity());
+  addBody(world, cubeMesh(), pose);
+  return world;
+}
+
+const BodyRef kA = BodyRef::body(0);
+const BodyRef kB = BodyRef::body(1);
+
+// ---------------------------------------------------------------------------------------------
+// Cubes
+
+TEST(Collision, OverlappingCubesCollide) {
+  const World world = twoCubes(translation(0.5, 0.3, 0.2));
+  EXPECT_TRUE(collide(world, kA, kB));
+  EXPECT_TRUE(collide(world, kB, kA));
+  const DistanceResult d = distance(world, kA, kB);
+  EXPECT_EQ(d.distance, 0.0);
+  EXPECT_TRUE(d.pointOnA.isApprox(d.pointOnB));
+  const auto report = collisionReport(world);
+  ASSERT_EQ(report.size(), 1u);
+  EXPECT_EQ(report[0].first, kA);
+  EXPECT_EQ(report[0].second, kB);
+}
+
+TEST(Collision, CubesFiveMillimetresApartAlongX) {
+  const World world = twoCubes(translation(6, 0, 0));  // faces x = 1 and x = 6
+  EXPECT_FALSE(collide(world, kA, kB));
+  EXPECT_TRUE(collisionReport(world).empty());
+  const DistanceResult d = distance(world, kA, kB);
+  EXPECT_NEAR(d.distance, 5.0, kTol);
+  // The nearest points lie on the facing faces, straight across from each other.
+  EXPECT_NEAR(d.pointOnA.x(), 1.0, kTol);
+  EXPECT_NEAR(d.pointOnB.x(), 6.0, kTol);
+  EXPECT_NEAR(d.pointOnA.y(), d.pointOnB.y(), kTol);
+  EXPECT_NEAR(d.pointOnA.z(), d.pointOnB.z(), kTol);
+  for (const Vector3& p : {d.pointOnA, d.pointOnB}) {
+    EXPECT_GE(p.y(), -kTol);
+    EXPECT_LE(p.y(), 1 + kTol);
+    EXPECT_GE(p.z(), -kTol);
+    EXPECT_LE(p.z(), 1 + kTol);
+  }
+  // Symmetric.
+  const DistanceResult back = distance(world, kB, kA);
+  EXPECT_NEAR(back.distance, 5.0, kTol);
+  EXPECT_NEAR(back.pointOnA.x(), 6.0, kTol);
+}
+
+TEST(Collision, CubeRotated45DegreesAboutZ) {
+  // The second cube turned 45 degrees about its own vertical axis, its centre at (cx, .5, .5):
+  // its nearest feature is the vertical edge at x = cx - sqrt(2)/2, facing the face x = 1.
+  for (double cx : {2.5, 5.0, 40.0}) {
+    SCOPED_TRACE(cx);
+    const Transform pose =
+        translation(cx, 0.5, 0.5) * rotZ(M_PI / 4) * translation(-0.5, -0.5, -0.5);
+    const World world = twoCubes(pose);
+    const double expected = cx - std::sqrt(0.5) - 1.0;
+    const DistanceResult d = distance(world, kA, kB);
+    EXPECT_NEAR(d.distance, expected, kTol);
+    EXPECT_NEAR(d.pointOnA.x(), 1.0, kTol);
+    EXPECT_NEAR(d.pointOnB.x(), cx - std::sqrt(0.5), kTol);
+    EXPECT_NEAR(d.pointOnB.y(), 0.5, kTol);
+    EXPECT_FALSE(collide(world, kA, kB));
+  }
+  // Close enough that the edge cuts into the first cube: cx - sqrt(2)/2 < 1.
+  EXPECT_TRUE(
+      collide(twoCubes(translation(1.6, 0.5, 0.5) * rotZ(M_PI / 4) * translation(-0.5, -0.5, -0.5)),
+              kA, kB));
+}
+
+TEST(Collision, TouchingAndNearlyTouchingCubes) {
+  // A micrometre apart: separate, and the distance says by how much.
+  {
+    const World world = twoCubes(translation(1 + 1e-3, 0, 0));
+    EXPECT_FALSE(collide(world, kA, kB));
+    EXPECT_NEAR(distance(world, kA, kB).distance, 1e-3, kTol);
+  }
+  // Overlapping by a micrometre, the second cube shifted in y and z so that faces cross.
+  EXPECT_TRUE(collide(twoCubes(translation(1 - 1e-3, 0.3, 0.4)), kA, kB));
+  // Exactly touching face to face, and edge to edge: whether coplanar contact counts is FCL's
+  // call, but the distance is 0 and nothing fails.
+  for (const Transform& pose : {translation(1, 0, 0), translation(1, 1, 0), translation(1, 1, 1)}) {
+    const World world = twoCubes(pose);
+    EXPECT_NO_THROW(collide(world, kA, kB));
+    EXPECT_NEAR(distance(world, kA, kB).distance, 0.0, kTol);
+  }
+}
+
+TEST(Collision, CubeInsideCubeIsNotACollision) {
+  // Surfaces only: a small cube wholly inside a big one crosses no triangle (GraspIt! alike).
+  World world;
+  addBody(world, cubeMesh(10), Transform::Identity());
+  addBody(world, cubeMesh(1), translation(4, 4, 4));
+  EXPECT_FALSE(collide(world, kA, kB));
+  EXPECT_NEAR(distance(world, kA, kB).distance, 4.0, kTol);
+}
+
+TEST(Collision, EmptyAndDegenerateMeshes) {
+  World world;
+  addBody(world, cubeMesh(), Transform::Identity());
+  addBody(world, std::make_shared<TriangleMesh>(), Transform::Identity(), BodyKind::Graspable,
+          "empty");
+  // A single triangle crossing the cube.
+  auto single = std::make_shared<TriangleMesh>();
+  single->vertices = {{-1, 0.5, -1}, {3, 0.5, -1}, {0.5, 0.5, 3}};
+  single->triangles = {{0, 1, 2}};
+  addBody(world, single, Transform::Identity(), BodyKind::Graspable, "single");
+  // Zero-area triangles only: repeated vertices and collinear ones.
+  auto flat = std::make_shared<TriangleMesh>();
+  flat->vertices = {{0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  flat->triangles = {{0, 1, 2}, {2, 3, 4}, {0, 0, 0}};
+  addBody(world, flat, Transform::Identity(), BodyKind::Graspable, "flat");
+  // A cube with a few zero-area triangles mixed in.
+  auto mixed = cubeMesh();
+  mixed->triangles.push_back({0, 0, 1});
+  mixed->triangles.push_back({0, 1, 1});
+  addBody(world, mixed, translation(0.5, 0.5, 0.5), BodyKind::Graspable, "mixed");
+
+  const BodyRef cube = BodyRef::body(0), empty = BodyRef::body(1), tri = BodyRef::body(2),
+                flat_ref = BodyRef::body(3), mixed_ref = BodyRef::body(4);
+  EXPECT_FALSE(collide(world, cube, empty));
+  EXPECT_EQ(distance(world, cube, empty).distance, std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(collide(world, cube, tri));
+  EXPECT_FALSE(collide(world, cube, flat_ref));
+  EXPECT_FALSE(collide(world, flat_ref, tri));
+  EXPECT_TRUE(collide(world, cube, mixed_ref));
+  EXPECT_EQ(collisionGeometry(flat), nullptr);
+  EXPECT_EQ(collisionGeometry(std::make_shared<TriangleMesh>()), nullptr);
+
+  const auto report = collisionReport(world);
+  for (const CollidingPair& pair : report) {
+    EXPECT_NE(pair.first, empty);
+    EXPECT_NE(pair.second, empty);
+    EXPECT_NE(pair.first, flat_ref);
+    EXPECT_NE(pair.second, flat_ref);
+  }
+  EXPECT_EQ(report.size(), 3u);  // cube-single, cube-mixed, single-mixed
+}
+
+TEST(Collision, MeshWithBadVertexIndexThrows) {
+  auto bad = cubeMesh();
+  bad->triangles.push_back({0, 1, 99});
+  EXPECT_THROW(collisionGeometry(bad), Error);
+}
+
+TEST(Collision, ReportInterestListAndFirstOnly) {
+  // Three cubes in a row, each overlapping the next: pairs (0,1) and (1,2) collide.
+  World world;
+  for (double x : {0.0, 0.6, 1.2}) addBody(world, cubeMesh(), translation(x, 0.1, 0.1));
+  EXPECT_EQ(collisionReport(world).size(), 2u);
+  const BodyRef first[] = {BodyRef::body(0)};
+  const auto only_first = collisionReport(world, {first, false});
+  ASSERT_EQ(only_first.size(), 1u);
+  EXPECT_EQ(only_first[0].second, BodyRef::body(1));
+  const BodyRef last[] = {BodyRef::body(2)};
+  EXPECT_EQ(collisionReport(world, {last, false}).size(), 1u);
+  EXPECT_EQ(collisionReport(world, {{}, true}).size(), 1u);
+  EXPECT_TRUE(anyCollision(world, first));
+  EXPECT_TRUE(anyCollision(world, {}));
+  world.collisionFilter().setBodyEnabled(BodyRef::body(1), false);
+  EXPECT_FALSE(anyCollision(world, {}));
+  EXPECT_FALSE(anyCollision(world, first));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The filter
+
+TEST(CollisionFilter, BodyPairAndStaticSwitches) {
+  World world;
+  addBody(world, cubeMesh(), Transform::Identity(), BodyKind::Obstacle, "table");
+  addBody(world, cubeMesh(), translation(0.5, 0, 0), BodyKind::Obstacle, "wall");
+  addBody(world, cubeMesh(), translation(0, 0.5, 0), BodyKind::Graspable, "box");
+  const BodyRef table = BodyRef::body(0), wall = BodyRef::body(1), box = BodyRef::body(2);
+  CollisionFilter& filter = world.collisionFilter();
+
+  EXPECT_FALSE(filter.isActive(world, box, box));
+  // Obstacles are checked against each other by default, as GraspIt! does.
+  EXPECT_TRUE(filter.isActive(world, table, wall));
+  EXPECT_EQ(collisionReport(world).size(), 3u);
+  filter.setStaticPairsEnabled(false);
+  EXPECT_FALSE(filter.isActive(world, table, wall));
+  EXPECT_TRUE(filter.isActive(world, table, box));
+  EXPECT_EQ(collisionReport(world).size(), 2u);
+  filter.setStaticPairsEnabled(true);
+
+  filter.setPairEnabled(box, table, false);
+  EXPECT_FALSE(filter.isActive(world, table, box));
+  EXPECT_TRUE(filter.isActive(world, wall, box));
+  filter.setPairEnabled(table, box, true);  // either order names the pair
+  EXPECT_TRUE(filter.isActive(world, table, box));
+
+  filter.setBodyEnabled(box, false);
+  EXPECT_FALSE(filter.isActive(world, table, box));
+  EXPECT_FALSE(filter.isActive(world, box, wall));
+  EXPECT_TRUE(filter.isActive(world, table, wall));
+  EXPECT_EQ(collisionReport(world).size(), 1u);
+  filter.setBodyEnabled(box, true);
+  EXPECT_TRUE(filter.isActive(world, box, wall));
+
+  EXPECT_THROW(filter.isActive(world, table, BodyRef::body(7)), Error);
+}
+
+std::optional<World> bh8World() {
+  const fs::path models = test::modelsDir();
+  LoadOptions options;
+  options.roots = {models};
+  options.useEnvironment = false;
+  return loadWorldFile(models / "worlds" / "default.xml", options);
+}
+
+TEST(CollisionFilter, Bh8HandRules) {
+  World world = *bh8World();
+  ASSERT_EQ(world.robotCount(), 1);
+  const auto& chains = world.robot(0).model().chains;
+  const BodyRef palm = BodyRef::robotBase(0);
+  auto link = [](int c, int l) { return BodyRef::robotLink(0, {c, l}); };
+  const CollisionFilter& filter = world.collisionFilter();
+
+  for (int c = 0; c < static_cast<int>(chains.size()); ++c) {
+    SCOPED_TRACE(c);
+    const int n = static_cast<int>(chains[c].links.size());
+    EXPECT_FALSE(filter.isActive(world, palm, link(c, 0)));  // base and first link
+    for (int l = 1; l < n; ++l) EXPECT_TRUE(filter.isActive(world, palm, link(c, l)));
+    // Every pair within one chain, neighbours or not (GraspIt!'s World::addRobot).
+    for (int l = 0; l < n; ++l)
+      for (int k = 0; k < n; ++k)
+        if (k != l) EXPECT_FALSE(filter.isActive(world, link(c, l), link(c, k)));
+  }
+  // Links of different fingers may collide.
+  EXPECT_TRUE(filter.isActive(world, link(0, 0), link(1, 0)));
+  EXPECT_TRUE(filter.isActive(world, link(0, 2), link(1, 2)));
+  EXPECT_TRUE(filter.isActive(world, link(2, 0), link(0, 1)));
+
+  const BodyRef floor = BodyRef::body(0), mug = BodyRef::body(1);
+  EXPECT_TRUE(filter.isActive(world, palm, mug));
+  EXPECT_TRUE(filter.isActive(world, link(0, 2), floor));
+
+  // The hand as a whole, switched off and on.
+  world.collisionFilter().setRobotEnabled(0, false);
+  EXPECT_FALSE(filter.isActive(world, palm, mug));
+  EXPECT_FALSE(filter.isActive(world, link(0, 2), link(1, 2)));
+  EXPECT_TRUE(filter.isActive(world, floor, mug));
+  world.collisionFilter().setRobotEnabled(0, true);
+  EXPECT_TRUE(filter.isActive(world, palm, mug));
+
+  // A user switch cannot undo a robot rule.
+  world.collisionFilter().setPairEnabled(palm, link(0, 0), true);
+  world.collisionFilter().setBodyEnabled(palm, true);
+  EXPECT_FALSE(filter.isActive(world, palm, link(0, 0)));
+
+  // The hand of the default world touches nothing. (The mug stands exactly on the floor,
+  // coplanar faces, which FCL counts as a collision.)
+  std::vector<BodyRef> hand;
+  for (const BodyRef& ref : worldBodies(world))
+    if (ref.isLink()) hand.push_back(ref);
+  EXPECT_EQ(hand.size(),
+            1 + chains[0].links.size() + chains[1].links.size() + chains[2].links.size());
+  EXPECT_TRUE(collisionReport(world, {hand, false}).empty());
+  EXPECT_FALSE(anyCollision(world, hand));
+}
+
+// A hand written at test time: a palm and two chains of unit cubes. Chain 0 has three links;
+// link 2 has collisionRule Off. Chain 1 has two links; link 1 overlaps chain 0's link 1.
+// <disableCollision> pairs: (chain 0 link 1, chain 1 link 0) and (base, chain 1 link 1).
+fs::path writeRuleHand() {
+  const fs::path dir = test::scratchDir() / "rule_hand";
+  fs::create_directories(dir / "iv");
+  std::ofstream(dir / "iv" / "cube.off")
+      << "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+         "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 2 3 7 6\n4 1 2 6 5\n4 0 4 7 3\n";
+  std::ofstream(dir / "iv" / "link.xml")
+      << "<root><material>plastic</material><mass>10</mass>"
+         "<geometryFile type=\"off\">cube.off</geometryFile></root>\n";
+  const std::string dof =
+      "<dof type=\"r\"><defaultVelocity>1</defaultVelocity><maxEffort>1</maxEffort><Kp>1</Kp>"
+      "<Kd>1</Kd><draggerScale>1</draggerScale></dof>\n";
+  auto joint = [](int d) {
+    return "<joint type=\"Revolute\"><theta>d" + std::to_string(d) +
+           "</theta><d>0</d><a>2</a><alpha>0</alpha><minValue>-90</minValue>"
+           "<maxValue>90</maxValue></joint>\n";
+  };
+  const fs::path file = dir / "rule_hand.xml";
+  std::ofstream(file)
+      << "<?xml version=\"1.0\" ?>\n<robot type=\"Hand\">\n<palm>link.xml</palm>\n"
+      << dof << dof << "<chain>\n"
+      << joint(0) << joint(0) << joint(0)
+      << "<link dynamicJointType=\"Revolute\">link.xml</link>\n"
+         "<link dynamicJointType=\"Revolute\">link.xml</link>\n"
+         "<link dynamicJointType=\"Revolute\" collisionRule=\"Off\">link.xml</link>\n"
+         "</chain>\n<chain>\n"
+      << joint(1) << joint(1)
+      << "<link dynamicJointType=\"Revolute\">link.xml</link>\n"
+         "<link dynamicJointType=\"Revolute\" collisionRule=\"OverlappingPair\" "
+         "targetChain=\"0\" targetLink=\"1\">link.xml</link>\n"
+         "</chain>\n"
+         "<disableCollision body1_chain=\"0\" body1_link=\"1\" body2_chain=\"1\" "
+         "body2_link=\"0\"/>\n"
+         "<disableCollision body1_chain=\"-1\" body1_link=\"0\" body2_chain=\"1\" "
+         "body2_link=\"1\"/>\n"
+         "</robot>\n";
+  return file;
+}
+
+TEST(CollisionFilter, RobotFileRules) {
+  auto model = loadRobotFile(writeRuleHand());
+  ASSERT_EQ(model->disabledCollisions.size(), 2u);
+  World world;
+  world.addRobot(Robot(model));
+  addBody(world, cubeMesh(), Transform::Identity(), BodyKind::Graspable, "box");
+  const BodyRef palm = BodyRef::robotBase(0), box = BodyRef::body(0);
+  auto link = [](int c, int l) { return BodyRef::robotLink(0, {c, l}); };
+  const CollisionFilter& filter = world.collisionFilter();
+
+  // collisionRule Off: nothing at all, not even a free body.
+  EXPECT_FALSE(filter.isActive(world, link(0, 2), box));
+  EXPECT_FALSE(filter.isActive(world, link(0, 2), link(1, 1)));
+  EXPECT_TRUE(filter.isActive(world, link(0, 1), box));
+  // OverlappingPair: chain 1 link 1 with chain 0 link 1, in either order.
+  EXPECT_FALSE(filter.isActive(world, link(1, 1), link(0, 1)));
+  EXPECT_FALSE(filter.isActive(world, link(0, 1), link(1, 1)));
+  EXPECT_TRUE(filter.isActive(world, link(1, 1), link(0, 0)));
+  // <disableCollision>, including the base written as chain -1.
+  EXPECT_FALSE(filter.isActive(world, link(0, 1), link(1, 0)));
+  EXPECT_FALSE(filter.isActive(world, link(1, 0), link(0, 1)));
+  EXPECT_FALSE(filter.isActive(world, palm, link(1, 1)));
+  EXPECT_FALSE(robotRulesAllow(world, palm, link(1, 1)));
+  // What no rule names stays active.
+  EXPECT_TRUE(filter.isActive(world, link(0, 0), link(1, 0)));
+  EXPECT_TRUE(filter.isActive(world, palm, link(0, 1)));
+  EXPECT_TRUE(filter.isActive(world, palm, box));
+}
+
+TEST(CollisionFilter, MountedRobotRules) {
+  const auto model = loadRobotFile(writeRuleHand());
+  World world;
+  world.addRobot(Robot(model));  // parent: chain 0 ends with link 2
+  world.addRobot(Robot(model));  // child, mounted on the parent's chain 1 (last link 1)
+  Connection connection;
+  connection.parentRobot = 0;
+  connection.parentChain = 1;
+  connection.childRobot = 1;
+  connection.mount = modelOf(cubeMesh(), "mount");
+  world.connect(connection);
+  const BodyRef mount = BodyRef::mount(0), child_base = BodyRef::robotBase(1);
+  const BodyRef parent_end = BodyRef::robotLink(0, {1, 1});
+  const BodyRef parent_first = BodyRef::robotLink(0, {1, 0});
+  const CollisionFilter& filter = world.collisionFilter();
+
+  EXPECT_FALSE(filter.isActive(world, mount, child_base));
+  EXPECT_FALSE(filter.isActive(world, child_base, mount));
+  EXPECT_FALSE(filter.isActive(world, mount, parent_end));
+  EXPECT_FALSE(filter.isActive(world, child_base, parent_end));
+  EXPECT_FALSE(filter.isActive(world, parent_end, child_base));
+  EXPECT_TRUE(filter.isActive(world, mount, parent_first));
+  EXPECT_TRUE(filter.isActive(world, child_base, parent_first));
+  EXPECT_TRUE(filter.isActive(world, mount, BodyRef::robotLink(1, {0, 0})));
+  EXPECT_TRUE(filter.isActive(world, BodyRef::robotBase(0), child_base));
+  // The mount piece belongs to the child robot.
+  world.collisionFilter().setRobotEnabled(1, false);
+  EXPECT_FALSE(filter.isActive(world, mount, parent_first));
+  EXPECT_TRUE(filter.isActive(world, BodyRef::robotBase(0), BodyRef::robotLink(0, {0, 1})));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sharing and threads
+
+TEST(CollisionGeometryCache, ClonesShareBvhAndOwnTheirFilter) {
+  World world = *bh8World();
+  const World clone = world.clone();
+  const BodyRef palm = BodyRef::robotBase(0), mug = BodyRef::body(1);
+  const auto& mesh = bodyModel(world, palm).mesh;
+  ASSERT_EQ(mesh, bodyModel(clone, palm).mesh);
+  const auto geometry = collisionGeometry(mesh);
+  ASSERT_NE(geometry, nullptr);
+  EXPECT_EQ(geometry, collisionGeometry(bodyModel(clone, palm).mesh));
+  EXPECT_EQ(geometry, collisionGeometry(mesh));
+
+  World second = world.clone();
+  second.collisionFilter().setPairEnabled(palm, mug, false);
+  EXPECT_FALSE(second.collisionFilter().isActive(second, palm, mug));
+  EXPECT_TRUE(world.collisionFilter().isActive(world, palm, mug));
+  EXPECT_TRUE(clone.collisionFilter().isActive(clone, palm, mug));
+}
+
+TEST(CollisionGeometryCache, NewMeshAtOldAddressGetsNewGeometry) {
+  // A mesh that dies must not leave its BVH to whichever mesh takes its address next.
+  for (int i = 0; i < 20; ++i) {
+    auto mesh = cubeMesh(1.0 + i);
+    const auto geometry = collisionGeometry(mesh);
+    World world;
+    addBody(world, mesh, Transform::Identity());
+    addBody(world, cubeMesh(), translation(0.5 + i, 0, 0));
+    EXPECT_TRUE(collide(world, kA, kB)) << i;
+    EXPECT_FALSE(collide(twoCubes(translation(2.5 + i, 0, 0)), kA, kB)) << i;
+  }
+}
+
+TEST(CollisionGeometryCache, TwoThreadsQueryAtOnce) {
+  // Fresh meshes, so both threads race to build the same BVHs, then query them.
+  constexpr int kBodies = 24;
+  World world;
+  std::vector<std::shared_ptr<TriangleMesh>> meshes;
+  for (int i = 0; i < kBodies; ++i) {
+    meshes.push_back(cubeMesh(1.0 + 0.01 * i));
+    addBody(world, meshes.back(), translation(0.9 * i, 0.05 * i, 0), BodyKind::Graspable,
+            "c" + std::to_string(i));
+  }
+  // Each cube overlaps the next one (side >= 1 > 0.9 step), no other.
+  const std::size_t expected = kBodies - 1;
+  std::vector<std::size_t> counts(2, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t) {
+    threads.emplace_back([&, t] {
+      const World mine = world.clone();
+      std::size_t total = 0;
+      for (int k = 0; k < 50; ++k) total += collisionReport(mine).size();
+      counts[t] = total;
+    });
+  }
+  for (auto& thread : threads) thread.join();
+  EXPECT_EQ(counts[0], 50 * expected);
+  EXPECT_EQ(counts[1], 50 * expected);
+  // One geometry per mesh survived the race.
+  for (const auto& mesh : meshes) {
+    const auto geometry = collisionGeometry(mesh);
+    ASSERT_NE(geometry, nullptr);
+    EXPECT_EQ(geometry, collisionGeometry(mesh));
+  }
+}
+
+}  // namespace
+}  // namespace graspkit
