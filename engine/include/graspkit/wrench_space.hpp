@@ -7,6 +7,10 @@
 //   LInfinity  the hull of the Minkowski sum over contacts of ({0} U the contact's wrenches)
 //              (each normal force is at most 1). It has prod(k_i + 1) points for contacts with
 //              k_i wrenches, so it grows fast: 4 point contacts give 9^4 = 6561 points.
+//              Its many coplanar points often make qhull fail with GraspIt!'s options (a "wide
+//              merge"); GraspIt! then reports epsilon -1 even for force-closure grasps.
+//              graspkit retries with exact pre-merges alone ("Qx"), which builds the true
+//              hull, but slowly (seconds for 6561 points).
 //
 // The hull is computed by qhull's reentrant library: every build uses its own qhT, so builds
 // on different threads need no lock (GraspIt! serialises all qhull calls behind one global

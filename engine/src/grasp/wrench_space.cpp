@@ -14,6 +14,7 @@ namespace {
 // GraspIt!'s qhull options without the output ones ("Pp n"): Qx exact pre-merges, QJ joggled
 // input, C-0.0001 a centrum radius for merging.
 constexpr const char* kGraspItOptions = "Qx QJ C-0.0001";
+constexpr const char* kLInfinityFallbackOptions = "Qx";
 
 // The number of points, as a double so that a huge Minkowski sum cannot overflow.
 double pointCount(const std::vector<std::vector<Vector6>>& sets, WrenchSpaceType type) {
@@ -111,7 +112,18 @@ GraspWrenchSpace graspWrenchSpace(const std::vector<std::vector<Vector6>>& conta
       return gws;
     }
   }
+  // qhull may joggle a copy, but keep the input intact for a second attempt.
+  std::vector<double> input =
+      options.type == WrenchSpaceType::LInfinity ? coords : std::vector<double>{};
   detail::qhullHull(coords, dim, kGraspItOptions, gws);
+  if (!gws.built && options.type == WrenchSpaceType::LInfinity) {
+    // The Minkowski sum is full of coplanar points, where joggling plus merging often ends in
+    // a "wide merge" error (GraspIt! then reports epsilon -1 for a force-closure grasp). Exact
+    // pre-merges alone ("Qx") build the true hull.
+    const std::string first_failure = gws.failure;
+    detail::qhullHull(input, dim, kLInfinityFallbackOptions, gws);
+    if (!gws.built) gws.failure = first_failure + "; with Qx alone: " + gws.failure;
+  }
   return gws;
 }
 
