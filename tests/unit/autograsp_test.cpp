@@ -8,6 +8,8 @@
 
 #include "graspkit/autograsp.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -167,6 +169,27 @@ TEST(AutoGrasp, RobotWithoutChainsIsNamedInTheError) {
     FAIL() << "autoGrasp accepted a robot without chains";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("Stump"), std::string::npos) << e.what();
+  }
+}
+
+TEST(AutoGrasp, RobotFileWithoutChainsIsRefusedWhereItIsRead) {
+  // The same robot written as a file never reaches autoGrasp: the loader names the file.
+  const std::filesystem::path dir = test::scratchDir();
+  std::filesystem::create_directories(dir / "iv");
+  std::ofstream(dir / "iv" / "tet.off") << "OFF\n4 4 0\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n"
+                                           "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(dir / "iv" / "palm.xml")
+      << "<root><material>plastic</material><geometryFile type=\"off\">tet.off</geometryFile>"
+         "</root>\n";
+  std::ofstream(dir / "Stump.xml") << "<?xml version=\"1.0\" ?>\n<robot type=\"Hand\">\n"
+                                      "  <palm>palm.xml</palm>\n</robot>\n";
+  std::ofstream(dir / "world.xml") << "<?xml version=\"1.0\" ?>\n<world>\n  <robot>\n"
+                                      "    <filename>Stump.xml</filename>\n  </robot>\n</world>\n";
+  try {
+    loadWorldFile(dir / "world.xml");
+    FAIL() << "a robot without chains loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Stump.xml"), std::string::npos) << e.what();
   }
 }
 
