@@ -252,6 +252,12 @@ AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& optio
         found = closestDistance(world, colliding) < kContactInstant;
       }
     }
+    if (!found && lo == 0.0) {
+      // Every bisection point collided: the step started (free) so close to contact that no
+      // fraction of it is free. Then the start itself is the contact instant.
+      closing.apply(from);
+      found = closestDistance(world, colliding) < kContactInstant;
+    }
     if (!found) {
       closing.apply(interpolate(from, to, lo));
       result.end = MotionEnd::InterpolationError;
