@@ -4,10 +4,10 @@
 // building one for a world (or for each clone of it) costs only the instances: meshes are
 // built once per process. update() re-reads the poses after the world moved.
 //
-// Precision: Embree traverses and intersects in float, so which triangle is hit, or found
-// nearest, is decided to about 1e-5 relative to the scene's size (a ray grazing an edge may
-// report either neighbour). The reported point, normal and distance are then recomputed in
-// double from the mesh's own vertices and the body's pose, on the triangle Embree found.
+// Precision: Embree works in float (vertices, instance transforms, rays), so hits are good to
+// about 1e-5 relative to the scene's size: which triangle is hit near an edge, and the hit's
+// distance, point and normal, carry float rounding. Nearest surface points are found the same
+// way, but the reported point and distance are computed in double on the triangle found.
 //
 // Threads: queries are const and thread-safe on a scene that is not being updated; update()
 // is not (give each thread its own RayScene, as each thread has its own World clone).
@@ -76,7 +76,7 @@ class RayScene {
   // The first surface the ray meets within [tmin, tmax], from either side. Throws
   // graspkit::Error for a non-finite origin, direction, tmin, a zero direction or tmin < 0.
   std::optional<RayHit> intersect(const Ray& ray) const;
-  // The same for many rays at once (Embree packets of 16); hits[i] answers rays[i]. Throws
+  // The same for many rays at once (Embree packets of 8); hits[i] answers rays[i]. Throws
   // graspkit::Error, before tracing any ray, when the sizes differ or a ray is bad as above.
   void intersect(std::span<const Ray> rays, std::span<std::optional<RayHit>> hits) const;
 
