@@ -60,6 +60,7 @@ class RayScene {
  public:
   explicit RayScene(const World& world, const RaySceneOptions& options = {});
   ~RayScene();
+  // A moved-from RayScene may only be destroyed or assigned to.
   RayScene(RayScene&&) noexcept;
   RayScene& operator=(RayScene&&) noexcept;
   RayScene(const RayScene&) = delete;
