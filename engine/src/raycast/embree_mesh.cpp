@@ -1,9 +1,12 @@
 #include "raycast/embree_mesh.hpp"
 
+#include <cmath>
+#include <limits>
 #include <mutex>
 #include <unordered_map>
 
 #include "graspkit/error.hpp"
+#include "raycast/closest_point.hpp"
 
 namespace graspkit::raycast {
 
@@ -63,8 +66,7 @@ bool visitPrimitive(RTCPointQueryFunctionArguments* args) {
 void EmbreeMesh::forEachNear(const Vector3& center, double radius, Callback callback,
                              void* user) const {
   if (mesh_->triangles.empty()) return;
-  // Pad for float rounding of both the stored vertices and the query centre.
-  const double pad = 1e-6 * (center.cwiseAbs().maxCoeff() + bounds_.sizes().maxCoeff()) + 1e-6;
+  const double pad = floatPad(center);
   RTCPointQuery query;
   query.x = static_cast<float>(center.x());
   query.y = static_cast<float>(center.y());
@@ -75,6 +77,50 @@ void EmbreeMesh::forEachNear(const Vector3& center, double radius, Callback call
   rtcInitPointQueryContext(&context);
   NearQuery near{user, callback};
   rtcPointQuery(scene_, &query, &context, &visitPrimitive, &near);
+}
+
+namespace {
+
+struct NearestSearch {
+  const TriangleMesh* mesh;
+  Vector3 center;
+  double pad;
+  double best;  // the distance to beat, mm
+  std::optional<EmbreeMesh::Nearest> found;
+};
+
+bool visitNearest(RTCPointQueryFunctionArguments* args) {
+  auto* search = static_cast<NearestSearch*>(args->userPtr);
+  const auto& t = search->mesh->triangles[args->primID];
+  const auto& v = search->mesh->vertices;
+  const Vector3 p = closestPointOnTriangle(search->center, v[t[0]], v[t[1]], v[t[2]]);
+  const double d = (p - search->center).norm();
+  if (!(d < search->best)) return false;
+  search->best = d;
+  search->found = EmbreeMesh::Nearest{args->primID, p, d};
+  args->query->radius = static_cast<float>(d + search->pad);
+  return true;
+}
+
+}  // namespace
+
+std::optional<EmbreeMesh::Nearest> EmbreeMesh::nearest(const Vector3& center,
+                                                       double maxDistance) const {
+  if (mesh_->triangles.empty()) return std::nullopt;
+  NearestSearch search{mesh_.get(), center, floatPad(center),
+                       std::nextafter(maxDistance, std::numeric_limits<double>::infinity()),
+                       std::nullopt};
+  RTCPointQuery query;
+  query.x = static_cast<float>(center.x());
+  query.y = static_cast<float>(center.y());
+  query.z = static_cast<float>(center.z());
+  query.time = 0.0f;
+  // Infinite radii are fine: Embree shrinks nothing until the callback does.
+  query.radius = static_cast<float>(maxDistance + search.pad);
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(scene_, &query, &context, &visitNearest, &search);
+  return search.found;
 }
 
 std::shared_ptr<const EmbreeMesh> embreeMesh(const std::shared_ptr<const TriangleMesh>& mesh) {

@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <optional>
 
 #include "graspkit/mesh.hpp"
 
@@ -31,6 +32,24 @@ class EmbreeMesh {
   template <class Visit>
   void forEachTriangleNear(const Vector3& center, double radius, Visit&& visit) const {
     forEachNear(center, radius, &invoke<Visit>, &visit);
+  }
+
+  // The nearest point of the mesh to `center` (mesh frame, mm) no farther than `maxDistance`
+  // (may be infinite), measured in double on the mesh's own vertices; nullopt when nothing is
+  // that close. Embree only prunes, with its radius shrunk as closer triangles turn up.
+  // Thread-safe.
+  struct Nearest {
+    unsigned triangle = 0;
+    Vector3 point = Vector3::Zero();  // mesh frame, mm
+    double distance = 0.0;            // mm
+  };
+  std::optional<Nearest> nearest(const Vector3& center, double maxDistance) const;
+
+  // How far float rounding of the stored vertices and of a query point `center` (mesh frame)
+  // can move what Embree compares; search radii are widened by this so nothing is pruned that
+  // double arithmetic would keep.
+  double floatPad(const Vector3& center) const {
+    return 1e-6 * (center.cwiseAbs().maxCoeff() + bounds_.sizes().maxCoeff()) + 1e-6;
   }
 
  private:
