@@ -99,7 +99,7 @@ TEST(Corpus, EveryFileLoadsOrFailsWithALocatedError) {
       if (root == "world") {
         loadWorldFile(item.path(), LoadOptions{{data}}, &cache);
       } else if (root == "robot") {
-        loadRobotFile(item.path(), &cache);
+        loadRobotFile(item.path(), {}, &cache);
       } else {
         if (relative.ends_with("objects/default.xml")) continue;  // a template with no geometry
         loadBodyFile(item.path(), &cache);

@@ -37,9 +37,14 @@ struct AutoGraspResult {
   MotionEnd end = MotionEnd::Settled;
 };
 
-// Closes robot `robot`'s DOFs in `world` (the world is changed). Throws graspkit::Error for a bad
-// robot index or a robot that is not a hand (no chains, or a "Robot" type without fingers).
+// Closes robot `robot`'s DOFs in `world` (the world is changed) the way its robot type closes
+// (RobotType::autoGrasp; genericAutoGrasp unless a plugin overrides it). Throws graspkit::Error
+// for a bad robot index or a robot that is not a hand (no chains, or a "Robot" type without
+// fingers).
 AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options = {});
+
+// GraspIt!'s Hand::autoGrasp: every DOF closes along its default velocity at once.
+AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions& options = {});
 
 // Opens the DOFs (against their default velocity) in chunks until the hand collides with
 // nothing or every DOF is at its open limit. Returns whether the hand ends collision-free.

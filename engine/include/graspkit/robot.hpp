@@ -18,6 +18,8 @@
 
 namespace graspkit {
 
+class RobotType;
+
 // The frame a hand approaches along: z is the approach direction, in the palm frame.
 struct ApproachDirection {
   Vector3 referenceLocation = Vector3::Zero();
@@ -39,6 +41,10 @@ struct RobotModel {
   std::string name;    // the file stem
   std::string type;    // the <robot type> attribute (Robot, Hand, Barrett, ...)
   std::string dbName;  // defaults to type
+  // The type's behaviour (from the registry) and who provided it ("barrett 1.0.0", "built in").
+  // Null for a model built in code: it behaves as a generic robot.
+  std::shared_ptr<const RobotType> robotType;
+  std::string typeProvider;
   bool isHand = true;  // false only for type "Robot"
   std::filesystem::path file;
 
@@ -60,6 +66,11 @@ struct RobotModel {
   std::optional<FlockOfBirds> flockOfBirds;
   std::vector<Tendon> tendons;
   std::vector<TendonWrapper> tendonWrappers;
+
+  // Excludes the pair (a, b) from collision detection, as a robot type's configure() does.
+  // Throws graspkit::Error naming the file when a or b is not a link of this model.
+  void disableCollision(const LinkRef& a, const LinkRef& b);
+  bool hasLink(const LinkRef& ref) const;  // the base, or an existing chain link
 
   int jointCount() const;
   int linkCount() const;  // chain links, the base excluded

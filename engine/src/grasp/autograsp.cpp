@@ -8,6 +8,7 @@
 #include "graspkit/collision.hpp"
 #include "graspkit/contact_search.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/robot_type.hpp"
 #include "graspkit/world.hpp"
 
 namespace graspkit {
@@ -218,6 +219,11 @@ std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef*
 }
 
 AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options) {
+  const std::shared_ptr<const RobotType>& type = world.robot(robot).model().robotType;
+  return type ? type->autoGrasp(world, robot, options) : genericAutoGrasp(world, robot, options);
+}
+
+AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions& options) {
   requireHand(world, robot);
   Closing closing(world, robot, options);
   AutoGraspResult result;

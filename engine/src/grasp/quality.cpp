@@ -9,6 +9,8 @@
 #include <fmt/ranges.h>
 
 #include "graspkit/error.hpp"
+#include "graspkit/registry.hpp"
+#include "plugin/builtins.hpp"
 
 namespace graspkit {
 namespace {
@@ -25,54 +27,23 @@ class VolumeMeasure final : public QualityMeasure {
   double evaluate(const GraspWrenchSpace& gws) const override { return volumeQuality(gws); }
 };
 
-struct Registry {
-  std::mutex mutex;
-  std::map<std::string, QualityMeasureFactory> factories;
-
-  Registry() {
-    factories["epsilon"] = [] { return std::make_unique<EpsilonMeasure>(); };
-    factories["volume"] = [] { return std::make_unique<VolumeMeasure>(); };
-  }
-};
-
-Registry& registry() {
-  static Registry instance;
-  return instance;
-}
-
 }  // namespace
 
+void addBuiltinQualityMeasures(Registry& registry) {
+  registry.addQualityMeasure("epsilon", [] { return std::make_unique<EpsilonMeasure>(); });
+  registry.addQualityMeasure("volume", [] { return std::make_unique<VolumeMeasure>(); });
+}
+
 void registerQualityMeasure(const std::string& name, QualityMeasureFactory factory) {
-  if (name.empty()) throw Error("a quality measure needs a name");
-  if (!factory) throw Error(fmt::format("quality measure '{}' has no factory", name));
-  Registry& r = registry();
-  std::lock_guard lock(r.mutex);
-  if (!r.factories.emplace(name, std::move(factory)).second)
-    throw Error(fmt::format("a quality measure named '{}' is already registered", name));
+  Registry::global().addQualityMeasure(name, std::move(factory));
 }
 
 std::unique_ptr<QualityMeasure> makeQualityMeasure(const std::string& name) {
-  QualityMeasureFactory factory;
-  {
-    Registry& r = registry();
-    std::lock_guard lock(r.mutex);
-    auto it = r.factories.find(name);
-    if (it != r.factories.end()) factory = it->second;
-  }
-  if (!factory)
-    throw Error(fmt::format("no quality measure named '{}' (known: {})", name,
-                            fmt::join(qualityMeasureNames(), ", ")));
-  std::unique_ptr<QualityMeasure> measure = factory();
-  if (!measure) throw Error(fmt::format("the factory of quality measure '{}' made nothing", name));
-  return measure;
+  return Registry::global().makeQualityMeasure(name);
 }
 
 std::vector<std::string> qualityMeasureNames() {
-  Registry& r = registry();
-  std::lock_guard lock(r.mutex);
-  std::vector<std::string> names;
-  for (const auto& entry : r.factories) names.push_back(entry.first);
-  return names;  // std::map keeps them sorted
+  return Registry::global().names(FactoryKind::QualityMeasure);
 }
 
 bool isForceClosure(const GraspWrenchSpace& gws) {

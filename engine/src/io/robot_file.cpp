@@ -9,6 +9,7 @@
 
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/log.hpp"
+#include "graspkit/registry.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -190,8 +191,9 @@ void readCollisionRule(const fs::path& file, const XMLElement& element, int chai
 
 class RobotReader {
  public:
-  RobotReader(const fs::path& file, ModelCache* cache)
-      : file_(file), dir_(file.parent_path()), link_dir_(dir_ / "iv"), cache_(cache) {}
+  RobotReader(const fs::path& file, const LoadOptions& options, ModelCache* cache)
+      : file_(file), dir_(file.parent_path()), link_dir_(dir_ / "iv"), options_(options),
+        cache_(cache) {}
 
   std::shared_ptr<const RobotModel> read() {
     xml::Document doc(file_);
@@ -218,6 +220,9 @@ class RobotReader {
     finishDofs(root, *robot);
     checkLinkReferences(root, *robot);
     readExtras(root, *robot);
+    if (robot->robotType) {
+      xml::locatedAt(file_, root, [&] { robot->robotType->configure(*robot); });
+    }
     return robot;
   }
 
@@ -228,10 +233,19 @@ class RobotReader {
     robot.type = type;
     robot.dbName = root.Attribute("DBName") ? root.Attribute("DBName") : robot.type;
     robot.isHand = robot.type != "Robot";
-    if (robot.type != "Robot" && robot.type != "Hand") {
-      // Special robot types (Barrett, Puma560, ...) come from plugins; the kernel knows none.
+    Registry& registry = options_.registry ? *options_.registry : Registry::global();
+    try {
+      robot.robotType = registry.robotType(robot.type);
+      robot.typeProvider = registry.provenance(FactoryKind::RobotType, robot.type)->describe();
+    } catch (const Error& e) {
+      if (!options_.genericRobotFallback) throw Error(xml::at(file_, root), e.message());
+      // Asked for: behave as a generic Hand, and say so.
       warn(xml::at(file_, root),
-           fmt::format("no plugin provides robot type '{}'; loaded as a generic Hand", robot.type));
+           fmt::format("no plugin provides robot type '{}'; loaded as a generic Hand (plugin "
+                       "search path: {})",
+                       robot.type, registry.plugins().describeSearchPath()));
+      robot.robotType = registry.robotType("Hand");
+      robot.typeProvider = "generic fallback";
     }
   }
 
@@ -462,16 +476,18 @@ class RobotReader {
   fs::path file_;
   fs::path dir_;
   fs::path link_dir_;
+  const LoadOptions& options_;
   ModelCache* cache_;
 };
 
 }  // namespace
 
-std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, ModelCache* cache) {
+std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, const LoadOptions& options,
+                                                ModelCache* cache) {
   // Without a caller's cache, a local one still reads a link file used by several links once.
   ModelCache local;
   ModelCache* used = cache ? cache : &local;
-  return used->robot(file, [&]() { return RobotReader(file, used).read(); });
+  return used->robot(file, [&]() { return RobotReader(file, options, used).read(); });
 }
 
 }  // namespace graspkit

@@ -4,15 +4,18 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mesh_loader.hpp"
+#include "graspkit/version.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -24,7 +27,7 @@ using tinyxml2::XMLElement;
 class WorldReader {
  public:
   WorldReader(const fs::path& file, const LoadOptions& options, ModelCache* cache)
-      : file_(file), roots_(searchRoots(file, options)), cache_(cache) {}
+      : file_(file), roots_(searchRoots(file, options)), options_(options), cache_(cache) {}
 
   World read() {
     xml::Document doc(file_);
@@ -86,7 +89,7 @@ class WorldReader {
   void readRobot(const XMLElement& element, World& world) {
     const XMLElement& filename = xml::requiredChild(file_, element, "filename");
     const fs::path path = resolve(filename);
-    Robot robot(xml::locatedAt(file_, filename, [&] { return loadRobotFile(path, cache_); }));
+    Robot robot(xml::locatedAt(file_, filename, [&] { return loadRobotFile(path, options_, cache_); }));
     if (const auto* values = xml::child(element, "dofValues")) readDofValues(*values, robot);
     robot.setPose(pose(element));  // GraspIt! applies the transform after the DOF values
     world.addRobot(std::move(robot), xml::text(filename));
@@ -166,6 +169,7 @@ class WorldReader {
 
   fs::path file_;
   std::vector<fs::path> roots_;
+  const LoadOptions& options_;
   ModelCache* cache_;
 };
 
@@ -193,9 +197,23 @@ void writeTransform(std::ostream& out, const Transform& transform, const char* i
       << indent << "</transform>\n";
 }
 
+// Which engine and which robot-type plugins produced the file. A comment before the root
+// element, so GraspIt! (which refuses unknown tags inside <world>) still reads the file.
+std::string provenanceComment(const World& world) {
+  std::set<std::string> types;
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const RobotModel& model = world.robot(r).model();
+    types.insert(model.type + " (" + (model.typeProvider.empty() ? "built in" : model.typeProvider) +
+                 ")");
+  }
+  std::string text = fmt::format("<!-- saved by graspkit {}", engineVersion());
+  if (!types.empty()) text += fmt::format("; robot types: {}", fmt::join(types, ", "));
+  return text + " -->\n";
+}
+
 std::string worldText(const World& world, const SaveOptions& options) {
   std::ostringstream out;
-  out << "<?xml version=\"1.0\" ?>\n<world>\n";
+  out << "<?xml version=\"1.0\" ?>\n" << provenanceComment(world) << "<world>\n";
   for (const Body& body : world.bodies()) {
     const char* tag = body.kind == BodyKind::Graspable ? "graspableBody" : "obstacle";
     const std::string name = body.filename.empty() ? relativeName(body.model->file, options.root)
@@ -271,7 +289,7 @@ World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* 
   if (root == "world") return loadWorldFile(file, options, cache);
   World world;
   if (root == "robot") {
-    world.addRobot(Robot(loadRobotFile(file, cache)), file);
+    world.addRobot(Robot(loadRobotFile(file, options, cache)), file);
   } else {
     Body body;
     body.model = loadBodyFile(file, cache);

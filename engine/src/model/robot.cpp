@@ -21,6 +21,23 @@ Transform ApproachDirection::frame() const {
   return t;
 }
 
+bool RobotModel::hasLink(const LinkRef& ref) const {
+  if (ref.isBase()) return true;
+  return ref.chain < static_cast<int>(chains.size()) && ref.link >= 0 &&
+         ref.link < static_cast<int>(chains[ref.chain].links.size());
+}
+
+void RobotModel::disableCollision(const LinkRef& a, const LinkRef& b) {
+  for (const LinkRef& ref : {a, b}) {
+    if (!hasLink(ref))
+      throw Error(SourceLocation{file.string()},
+                  fmt::format("robot type {} excludes chain {} link {} from collisions, but the "
+                              "robot has no such link",
+                              type, ref.chain, ref.link));
+  }
+  disabledCollisions.push_back(CollisionPair{a, b});
+}
+
 int RobotModel::jointCount() const {
   int count = 0;
   for (const KinematicChain& chain : chains) count += static_cast<int>(chain.joints.size());

@@ -4,14 +4,18 @@
 #include <filesystem>
 #include <memory>
 
+#include "graspkit/io/load_options.hpp"
 #include "graspkit/io/model_cache.hpp"
 #include "graspkit/robot.hpp"
 
 namespace graspkit {
 
-// Throws graspkit::Error naming file, line and element. Robot types other than Robot and Hand
-// load as a generic Hand, with a warning, until a plugin provides them.
+// Throws graspkit::Error naming file, line and element. The <robot type> is looked up in the
+// registry (loading the plugin that provides it); an unknown type is an error listing the
+// available types and the plugin search path, unless options.genericRobotFallback asks for a
+// generic Hand instead.
 std::shared_ptr<const RobotModel> loadRobotFile(const std::filesystem::path& file,
+                                                const LoadOptions& options = {},
                                                 ModelCache* cache = nullptr);
 
 // An <EigenGrasps dimensions=N> file for a robot with `dof_count` DOFs.

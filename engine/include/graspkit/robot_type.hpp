@@ -1,0 +1,35 @@
+#pragma once
+// A robot type: what the `type` attribute of <robot> names (Hand, Barrett, Puma560, ...). The
+// engine provides the generic "Robot" and "Hand"; every special type comes from a plugin, which
+// overrides only what differs: extra collision exclusions, a closed-form inverse kinematics, a
+// hand-specific autograsp. A RobotType is stateless and shared by every robot of its type.
+
+#include "graspkit/autograsp.hpp"
+#include "graspkit/inverse_kinematics.hpp"
+
+namespace graspkit {
+
+class Robot;
+struct RobotModel;
+class World;
+
+class RobotType {
+ public:
+  virtual ~RobotType() = default;
+
+  // Adjusts a freshly read model once, before it is shared: adds the type's collision
+  // exclusions, checks the structure the type relies on (throw graspkit::Error naming
+  // model.file when it is wrong). The default changes nothing.
+  virtual void configure(RobotModel& model) const;
+
+  // DOF values that put the end of chain `request.chain` at `target` (world frame). The default
+  // is the engine's iterative solver (iterativeInverseKinematics).
+  virtual IkResult inverseKinematics(const Robot& robot, const Transform& target,
+                                     const IkRequest& request) const;
+
+  // Closes the hand. The default is the engine's autoGrasp (genericAutoGrasp).
+  virtual AutoGraspResult autoGrasp(World& world, int robot,
+                                    const AutoGraspOptions& options) const;
+};
+
+}  // namespace graspkit

@@ -1,0 +1,7 @@
+#include "graspkit/version.hpp"
+
+namespace graspkit {
+
+const char* engineVersion() { return GRASPKIT_VERSION; }
+
+}  // namespace graspkit

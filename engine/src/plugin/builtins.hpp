@@ -1,0 +1,11 @@
+#pragma once
+// The engine's own factories, registered by every Registry at construction.
+
+namespace graspkit {
+
+class Registry;
+
+void addBuiltinQualityMeasures(Registry& registry);  // grasp/quality.cpp
+void addBuiltinRobotTypes(Registry& registry);       // model/robot_type.cpp
+
+}  // namespace graspkit

@@ -1,0 +1,115 @@
+#include "graspkit/registry.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "graspkit/error.hpp"
+#include "plugin/builtins.hpp"
+
+namespace graspkit {
+
+const char* toString(FactoryKind kind) {
+  switch (kind) {
+    case FactoryKind::RobotType: return "robot type";
+    case FactoryKind::QualityMeasure: return "quality measure";
+  }
+  return "factory";
+}
+
+std::string Provenance::describe() const {
+  if (plugin.empty()) return "built in";
+  return version.empty() ? plugin : plugin + " " + version;
+}
+
+Registry::Registry() : loader_(*this) {
+  addBuiltinRobotTypes(*this);
+  addBuiltinQualityMeasures(*this);
+}
+
+Registry& Registry::global() {
+  static Registry instance;
+  return instance;
+}
+
+void Registry::add(FactoryKind kind, const std::string& name, Entry entry) {
+  if (name.empty()) throw Error(fmt::format("a {} needs a name", toString(kind)));
+  std::lock_guard lock(mutex_);
+  auto [it, inserted] = entries_.try_emplace(Key{kind, name}, std::move(entry));
+  if (!inserted)
+    throw Error(fmt::format("{} '{}' is already provided by {}", toString(kind), name,
+                            it->second.from.describe()));
+}
+
+void Registry::addRobotType(const std::string& name, RobotTypeFactory factory, Provenance from) {
+  if (!factory) throw Error(fmt::format("robot type '{}' has no factory", name));
+  add(FactoryKind::RobotType, name, Entry{std::move(factory), {}, nullptr, std::move(from)});
+}
+
+void Registry::addQualityMeasure(const std::string& name, QualityMeasureFactory factory,
+                                 Provenance from) {
+  if (!factory) throw Error(fmt::format("quality measure '{}' has no factory", name));
+  add(FactoryKind::QualityMeasure, name, Entry{{}, std::move(factory), nullptr, std::move(from)});
+}
+
+bool Registry::contains(FactoryKind kind, const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  return entries_.count(Key{kind, name}) > 0;
+}
+
+std::vector<std::string> Registry::names(FactoryKind kind) const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> names;
+  for (const auto& [key, entry] : entries_)
+    if (key.first == kind) names.push_back(key.second);
+  return names;  // the map orders by (kind, name)
+}
+
+std::optional<Provenance> Registry::provenance(FactoryKind kind, const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(Key{kind, name});
+  if (it == entries_.end()) return std::nullopt;
+  return it->second.from;
+}
+
+std::optional<Registry::Entry> Registry::find(FactoryKind kind, const std::string& name) {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(Key{kind, name});
+  if (it == entries_.end() && loader_.loadProviding(kind, name)) it = entries_.find(Key{kind, name});
+  if (it == entries_.end()) return std::nullopt;
+  return it->second;
+}
+
+void Registry::throwUnknown(FactoryKind kind, const std::string& name) {
+  loader_.loadAll();  // so the message lists everything the path offers
+  std::string message = fmt::format("unknown {} '{}'; available: {}; plugin search path: {}",
+                                    toString(kind), name, fmt::join(names(kind), ", "),
+                                    loader_.describeSearchPath());
+  for (const PluginInfo& failed : loader_.failures())
+    message += fmt::format("; plugin {} failed to load: {}", failed.file.string(), failed.error);
+  throw Error(message);
+}
+
+std::shared_ptr<const RobotType> Registry::robotType(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  if (!find(FactoryKind::RobotType, name)) throwUnknown(FactoryKind::RobotType, name);
+  Entry& entry = entries_.at(Key{FactoryKind::RobotType, name});
+  if (!entry.robotTypeInstance) {
+    entry.robotTypeInstance = entry.robotType();
+    if (!entry.robotTypeInstance)
+      throw Error(fmt::format("the factory of robot type '{}' ({}) made nothing", name,
+                              entry.from.describe()));
+  }
+  return entry.robotTypeInstance;
+}
+
+std::unique_ptr<QualityMeasure> Registry::makeQualityMeasure(const std::string& name) {
+  std::optional<Entry> entry = find(FactoryKind::QualityMeasure, name);
+  if (!entry) throwUnknown(FactoryKind::QualityMeasure, name);
+  std::unique_ptr<QualityMeasure> measure = entry->qualityMeasure();
+  if (!measure)
+    throw Error(fmt::format("the factory of quality measure '{}' ({}) made nothing", name,
+                            entry->from.describe()));
+  return measure;
+}
+
+}  // namespace graspkit

@@ -1,0 +1,23 @@
+// NASA's Robonaut hand: a generic hand whose palm overlaps the second link of its first chain
+// (the thumb), so GraspIt! excludes that pair from collisions.
+
+#include "graspkit/plugin.hpp"
+#include "graspkit/registry.hpp"
+#include "graspkit/robot.hpp"
+
+namespace {
+
+class Robonaut final : public graspkit::RobotType {
+ public:
+  void configure(graspkit::RobotModel& model) const override {
+    model.disableCollision(graspkit::LinkRef{}, graspkit::LinkRef{0, 1});
+  }
+};
+
+void registerRobonaut(graspkit::Registrar& registrar) {
+  registrar.addRobotType("Robonaut", [] { return std::make_shared<const Robonaut>(); });
+}
+
+}  // namespace
+
+GRASPKIT_PLUGIN("robonaut", "1.0.0", registerRobonaut)
