@@ -13,12 +13,14 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
+#include "graspkit/version.hpp"
 #include "graspkit/world.hpp"
 #include "test_paths.hpp"
 
@@ -311,8 +313,10 @@ TEST(WorldFile, SaveLoadSaveIsByteIdentical) {
   EXPECT_EQ(once.camera()->focalDistance, 250);
   EXPECT_EQ(once.camera()->orientation.coeffs(), camera.orientation.coeffs());
 
-  // GraspIt!'s layout: header, bodies, robots, connections, camera.
-  EXPECT_EQ(second.rfind("<?xml version=\"1.0\" ?>\n<world>\n", 0), 0u) << second;
+  // GraspIt!'s layout: header, bodies, robots, connections, camera. Before <world>, a comment
+  // records the engine and who provided each robot type (the test hand is a built-in Hand).
+  EXPECT_EQ(second.rfind("<?xml version=\"1.0\" ?>\n<!-- saved by graspkit ", 0), 0u) << second;
+  EXPECT_NE(second.find("robot types: Hand (built in) -->\n<world>\n"), std::string::npos) << second;
   const auto obstacle_at = second.find("<obstacle>");
   const auto graspable_at = second.find("<graspableBody>");
   const auto robot_at = second.find("<robot>");
@@ -343,7 +347,9 @@ TEST(WorldFile, SuccessfulSaveLeavesNoTemporary) {
   saveWorldFile(world, root / "world.xml");
   saveWorldFile(world, root / "world.xml");  // over an existing file too
   EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
-  EXPECT_EQ(readText(root / "world.xml"), "<?xml version=\"1.0\" ?>\n<world>\n</world>\n");
+  EXPECT_EQ(readText(root / "world.xml"),
+            fmt::format("<?xml version=\"1.0\" ?>\n<!-- saved by graspkit {} -->\n<world>\n</world>\n",
+                        engineVersion()));
 }
 
 TEST(WorldFile, FailedWriteKeepsTheOldFile) {

@@ -1,0 +1,229 @@
+// The plugin loader against the plugin corpus (tests/plugins): the well-formed plugin loads on
+// demand and is recorded with its provenance; each broken plugin is refused with an error that
+// names the file and the failure, and registers nothing.
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "graspkit/collision_filter.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/log.hpp"
+#include "graspkit/registry.hpp"
+#include "test_paths.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCorpus = GRASPKIT_PLUGIN_CORPUS_DIR;
+const fs::path kGood = kCorpus / "good";
+const fs::path kBroken = kCorpus / "broken";
+
+// The error message of loading `file` into a fresh registry whose path holds only the good plugin.
+std::string loadError(const std::string& file) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood});
+  registry.plugins().load(kGood / "good.so");
+  try {
+    registry.plugins().load(kBroken / file);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << file << " loaded without an error";
+  return "";
+}
+
+// A copy of the project's parallel-jaw gripper whose <robot type> is `type`.
+fs::path gripperOfType(const std::string& type) {
+  const fs::path dir = test::scratchDir() / "gripper";
+  fs::copy(test::modelsDir() / "robots" / "parallel_jaw", dir, fs::copy_options::recursive);
+  const fs::path file = dir / "parallel_jaw.xml";
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  std::string xml = text.str();
+  const std::string from = "type=\"Hand\"";
+  xml.replace(xml.find(from), from.size(), "type=\"" + type + "\"");
+  std::ofstream(file) << xml;
+  return file;
+}
+
+TEST(PluginLoader, LoadsThePluginProvidingARequestedTypeOnDemand) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood});
+  EXPECT_FALSE(registry.contains(FactoryKind::RobotType, "CorpusGripper"));
+  ASSERT_NE(registry.robotType("CorpusGripper"), nullptr);
+  const auto from = registry.provenance(FactoryKind::RobotType, "CorpusGripper");
+  ASSERT_TRUE(from);
+  EXPECT_EQ(from->plugin, "corpus_good");
+  EXPECT_EQ(from->version, "2.3.4");
+  EXPECT_EQ(fs::canonical(from->file), fs::canonical(kGood / "good.so"));
+  // The same plugin brought its quality measure along.
+  EXPECT_EQ(registry.makeQualityMeasure("corpus_constant")->evaluate(GraspWrenchSpace{}), 42.0);
+}
+
+TEST(PluginLoader, TheRobotTypeConfiguresTheModel) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood});
+  LoadOptions options;
+  options.registry = &registry;
+  const auto model = loadRobotFile(gripperOfType("CorpusGripper"), options);
+  EXPECT_EQ(model->typeProvider, "corpus_good 2.3.4");
+  ASSERT_EQ(model->disabledCollisions.size(), 1u);
+  EXPECT_TRUE(model->disabledCollisions[0].first.isBase());
+  EXPECT_EQ(model->disabledCollisions[0].second, (LinkRef{0, 0}));
+}
+
+TEST(PluginLoader, LoadingTheSameFileTwiceIsOneLoad) {
+  Registry registry;
+  const PluginInfo& first = registry.plugins().load(kGood / "good.so");
+  const PluginInfo& second = registry.plugins().load(kGood / "." / "good.so");
+  EXPECT_EQ(&first, &second);
+  EXPECT_EQ(registry.plugins().loaded().size(), 1u);
+}
+
+struct BrokenCase {
+  const char* file;
+  const char* says;
+  const char* neverRegistered;  // a name the plugin tried to register, or ""
+};
+
+class BrokenPlugin : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenPlugin, IsRefusedWithAnErrorNamingTheFileAndRegistersNothing) {
+  const BrokenCase& c = GetParam();
+  const std::string message = loadError(c.file);
+  EXPECT_NE(message.find((kBroken / c.file).string()), std::string::npos) << message;
+  EXPECT_NE(message.find(c.says), std::string::npos) << message;
+  EXPECT_NE(message.find("plugin search path: " + kGood.string()), std::string::npos) << message;
+
+  Registry registry;
+  registry.plugins().load(kGood / "good.so");
+  EXPECT_THROW(registry.plugins().load(kBroken / c.file), Error);
+  if (*c.neverRegistered)
+    EXPECT_FALSE(registry.contains(FactoryKind::RobotType, c.neverRegistered));
+  EXPECT_EQ(registry.names(FactoryKind::RobotType),
+            (std::vector<std::string>{"CorpusGripper", "Hand", "Robot"}));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Corpus, BrokenPlugin,
+    ::testing::Values(
+        BrokenCase{"wrong_abi.so", "built for plugin ABI 999, this engine loads ABI 1",
+                   "WrongAbiType"},
+        BrokenCase{"wrong_size.so", "descriptor size", "WrongSizeType"},
+        BrokenCase{"no_symbol.so", "not a graspkit plugin: no symbol graspkit_plugin_v1", ""},
+        BrokenCase{"null_descriptor.so", "returned no descriptor", ""},
+        BrokenCase{"throws.so", "threw while registering: calibration table missing",
+                   "HalfRegisteredType"},
+        BrokenCase{"duplicate_type.so",
+                   "provides robot type 'CorpusGripper', already provided by corpus_good 2.3.4",
+                   "DuplicateOnlyType"},
+        BrokenCase{"twice_in_one.so", "registers robot type 'TwiceType' twice", "TwiceType"},
+        BrokenCase{"same_name.so", "a plugin named 'corpus_good' is already loaded",
+                   "ImpostorType"},
+        BrokenCase{"empty_names.so", "registers a robot type with no name", ""},
+        BrokenCase{"not_elf.so", "cannot load", ""}),
+    [](const auto& info) { return fs::path(info.param.file).stem().string(); });
+
+TEST(PluginLoader, AMissingFileIsAnError) {
+  Registry registry;
+  try {
+    registry.plugins().load(kCorpus / "no_such_plugin.so");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_plugin.so: no such file"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(PluginLoader, UnknownRobotTypeNamesTheFileTheTypesAndThePath) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood, kBroken});
+  LoadOptions options;
+  options.registry = &registry;
+  const fs::path file = gripperOfType("NoSuchType");
+  try {
+    loadRobotFile(file, options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(file.string() + ":"), std::string::npos) << message;
+    EXPECT_NE(message.find("<robot>"), std::string::npos) << message;
+    EXPECT_NE(message.find("unknown robot type 'NoSuchType'"), std::string::npos) << message;
+    EXPECT_NE(message.find("available: CorpusGripper, Hand, Robot"), std::string::npos) << message;
+    EXPECT_NE(message.find(kGood.string() + ":" + kBroken.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("throws.so failed to load"), std::string::npos) << message;
+  }
+}
+
+TEST(PluginLoader, GenericFallbackOnlyWhenAskedAndSaysSo) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood});
+  LoadOptions options;
+  options.registry = &registry;
+  options.genericRobotFallback = true;
+  std::vector<std::string> warnings;
+  const WarningHandler previous = setWarningHandler(
+      [&](const SourceLocation& where, const std::string& text) { warnings.push_back(text); });
+  const auto model = loadRobotFile(gripperOfType("NoSuchType"), options);
+  setWarningHandler(previous);
+  EXPECT_EQ(model->type, "NoSuchType");
+  EXPECT_EQ(model->typeProvider, "generic fallback");
+  EXPECT_TRUE(model->isHand);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("loaded as a generic Hand"), std::string::npos) << warnings[0];
+}
+
+TEST(PluginLoader, LoadAllReportsEveryFileLoadedOrNot) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood, kBroken});
+  const std::vector<PluginInfo> all = registry.plugins().loadAll();
+  ASSERT_EQ(all.size(), 11u);  // good + ten broken files
+  int loaded = 0;
+  for (const PluginInfo& info : all) {
+    if (info.loaded) {
+      ++loaded;
+      EXPECT_EQ(info.name, "corpus_good");
+      EXPECT_EQ(describeProvides(info), "robot type CorpusGripper, quality measure corpus_constant");
+    } else {
+      EXPECT_FALSE(info.error.empty()) << info.file;
+    }
+  }
+  EXPECT_EQ(loaded, 1);
+  EXPECT_EQ(registry.plugins().failures().size(), 10u);
+}
+
+TEST(PluginLoader, SearchesTheEnvironmentFirstThenBesideTheEngine) {
+  const char* old = std::getenv("GRASPKIT_PLUGIN_PATH");
+  const std::string saved = old ? old : "";
+  setenv("GRASPKIT_PLUGIN_PATH", (kGood.string() + ":/nonexistent/folder").c_str(), 1);
+  Registry registry;
+  const std::vector<fs::path> path = registry.plugins().searchPath();
+  if (old) setenv("GRASPKIT_PLUGIN_PATH", saved.c_str(), 1);
+  else unsetenv("GRASPKIT_PLUGIN_PATH");
+  ASSERT_GE(path.size(), 3u);
+  EXPECT_EQ(path[0], kGood);
+  EXPECT_EQ(path[1], fs::path("/nonexistent/folder"));
+  // The build tree's plugin folder sits beside libgraspkit.
+  const fs::path beside = fs::path(GRASPKIT_BINARY_DIR) / "lib" / "graspkit" / "plugins";
+  EXPECT_NE(std::find(path.begin(), path.end(), beside), path.end());
+}
+
+TEST(PluginLoader, TheEngineFindsItsOwnPluginsWithoutConfiguration) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::nullopt);
+  ASSERT_NE(registry.robotType("Robonaut"), nullptr);
+  const auto from = registry.provenance(FactoryKind::RobotType, "Robonaut");
+  ASSERT_TRUE(from);
+  EXPECT_EQ(from->plugin, "robonaut");
+  EXPECT_EQ(fs::canonical(from->file.parent_path()),
+            fs::canonical(fs::path(GRASPKIT_BINARY_DIR) / "lib" / "graspkit" / "plugins"));
+}
+
+}  // namespace
+}  // namespace graspkit
