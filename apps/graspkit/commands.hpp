@@ -14,6 +14,7 @@ namespace graspkit::cli {
 struct InfoOptions {
   std::filesystem::path file;
   std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
   std::string dofs;  // comma-separated DOF values
   int robot = 0;
   bool json = false;
@@ -25,6 +26,7 @@ int runInfo(const InfoOptions& options, std::ostream& out);
 struct GraspOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
   int robot = 0;
   std::string object;  // body name; the first graspable body when empty
   std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
@@ -36,6 +38,19 @@ struct GraspOptions {
 
 void addGraspCommand(CLI::App& app, GraspOptions& options);
 int runGrasp(const GraspOptions& options, std::ostream& out);
+
+struct PluginsOptions {
+  bool json = false;
+};
+
+void addPluginsCommand(CLI::App& app, PluginsOptions& options);
+// Lists every plugin on the search path and what it provides. Exit status 1 when a plugin on the
+// path failed to load (each failure is listed with its reason).
+int runPlugins(const PluginsOptions& options, std::ostream& out);
+
+// The options every command that loads files shares: --root and --generic-robots.
+void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
+                  bool& generic_robots);
 
 // "1,2.5,-3" -> {1, 2.5, -3}; throws graspkit::Error naming `option` for anything else
 // (empty items, trailing text, NaN or infinity).

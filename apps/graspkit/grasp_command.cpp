@@ -92,7 +92,7 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("grasp", "Place a hand, optionally close it, report contacts and quality");
   cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--root", options.roots, "Folder that world <filename> paths are relative to");
+  addLoadFlags(*cmd, options.roots, options.genericRobots);
   cmd->add_option("--robot", options.robot, "Which robot is the hand (0-based)")->default_val(0);
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--pose", options.pose, "Hand pose in the world: tx,ty,tz,qw,qx,qy,qz (mm)");
@@ -104,7 +104,7 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
 
 int runGrasp(const GraspOptions& options, std::ostream& out) {
   const WrenchSpaceType gws = parseGws(options.gws);  // before the (slower) load
-  World world = loadWorldFile(options.world, LoadOptions{options.roots});
+  World world = loadWorldFile(options.world, LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
   world.robot(options.robot);  // range check with a clear message
   const BodyRef object = findObject(world, options.object);
   if (!options.pose.empty()) world.setRobotPose(options.robot, parsePose(options.pose));

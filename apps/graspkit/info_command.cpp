@@ -136,12 +136,12 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
   cmd->add_option("--dofs", options.dofs, "DOF values to set, comma-separated (rad or mm)");
   cmd->add_option("--robot", options.robot, "Which robot --dofs applies to (0-based)")
       ->default_val(0);
-  cmd->add_option("--root", options.roots, "Folder that world <filename> paths are relative to");
+  addLoadFlags(*cmd, options.roots, options.genericRobots);
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 
 int runInfo(const InfoOptions& options, std::ostream& out) {
-  World world = loadAnyFile(options.file, LoadOptions{options.roots});
+  World world = loadAnyFile(options.file, LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
   if (!options.dofs.empty())
     world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
   json j = worldJson(world);

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   graspkit::cli::addInfoCommand(app, info);
   graspkit::cli::GraspOptions grasp;
   graspkit::cli::addGraspCommand(app, grasp);
+  graspkit::cli::PluginsOptions plugins;
+  graspkit::cli::addPluginsCommand(app, plugins);
 
   try {
     app.parse(argc, argv);
@@ -34,6 +36,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("info")) return graspkit::cli::runInfo(info, std::cout);
     if (app.got_subcommand("grasp")) return graspkit::cli::runGrasp(grasp, std::cout);
+    if (app.got_subcommand("plugins")) return graspkit::cli::runPlugins(plugins, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
