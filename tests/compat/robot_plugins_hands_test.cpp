@@ -182,10 +182,12 @@ double firstCollision(World world, int dof, const BodyRef& link, const BodyRef& 
   return max;
 }
 
-TEST(RobotIQAutoGrasp, ProximalStopsAtTheBoxThenMiddleThenDistal) {
-  GRASPKIT_REQUIRE_SHARED();
+// A 60 mm slab across the palm, moved `shift` mm along x: shifted, one side's proximal
+// phalanges touch first and end the motion's round while the other side's still close.
+void closeOnSlab(double shift) {
+  SCOPED_TRACE(shift);
   World world = robotIQStraight();
-  const BodyRef box = BodyRef::body(addBox(world, {-30, 52, -60}, {30, 62, 60}));
+  const BodyRef box = BodyRef::body(addBox(world, {shift - 30, 52, -60}, {shift + 30, 62, 60}));
   ASSERT_TRUE(collisionReport(world).empty());
   const World start = world.clone();
   const RobotModel& model = world.robot(0).model();
@@ -227,6 +229,13 @@ TEST(RobotIQAutoGrasp, ProximalStopsAtTheBoxThenMiddleThenDistal) {
   // Fingers 1 and 2 mirror each other in z.
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(q[4 + k], q[8 + k], 1e-12);
   EXPECT_LT(result.iterations, 1000 * 500);
+}
+
+TEST(RobotIQAutoGrasp, ProximalStopsAtTheBoxThenMiddleThenDistal) {
+  GRASPKIT_REQUIRE_SHARED();
+  closeOnSlab(0.0);
+  closeOnSlab(4.0);   // finger 0 touches first
+  closeOnSlab(-4.0);  // fingers 1 and 2 touch first
 }
 
 TEST(RobotIQAutoGrasp, WithoutObstaclesEveryPhalanxEndsAtItsLimit) {
