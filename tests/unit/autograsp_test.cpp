@@ -140,6 +140,41 @@ TEST(AutoGrasp, BarrettOnTheMugNeverInterpenetrates) {
   expectNoLinkCollides(world, 0, mug);
 }
 
+TEST(AutoGrasp, MoveDofsToContactsStopsShortOfItsTargetOrAtTheBox) {
+  // The jaw's prismatic DOF toward a target before the box (d0 = 4 leaves a 6 mm gap): it
+  // stops there, in 0.5 mm steps (ceil(4 / 0.5) = 8); toward 20 (past the box) it stops at
+  // the box, as autograsp does; a zero step holds the DOF.
+  World world = gripperBox();
+  DofMotion motion{.targets = {4.0}, .steps = {0.5}};
+  AutoGraspResult result = moveDofsToContacts(world, 0, motion);
+  EXPECT_EQ(result.dofValues[0], 4.0);
+  EXPECT_EQ(result.iterations, 8);
+  EXPECT_EQ(result.end, MotionEnd::Settled);
+
+  motion.steps = {0.0};
+  motion.targets = {20.0};
+  result = moveDofsToContacts(world, 0, motion);
+  EXPECT_EQ(result.dofValues[0], 4.0);
+  EXPECT_EQ(result.iterations, 0);
+
+  motion.steps = {-0.5};  // a magnitude: the sign comes from the target
+  result = moveDofsToContacts(world, 0, motion);
+  const double gap = 40.0 - result.dofValues[0] - 30.0;
+  EXPECT_GT(gap, 0.0);
+  EXPECT_LE(gap, kContactThreshold);
+}
+
+TEST(AutoGrasp, MoveDofsToContactsNamesAWrongDofCount) {
+  World world = gripperBox();
+  try {
+    moveDofsToContacts(world, 0, DofMotion{.targets = {1.0, 2.0}, .steps = {0.1, 0.1}});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("1 DOFs, the motion gives 2 targets"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(AutoGrasp, RobotIndexOutOfRangeThrows) {
   World world = gripperBox();
   EXPECT_THROW(autoGrasp(world, 1), Error);

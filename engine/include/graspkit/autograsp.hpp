@@ -5,6 +5,7 @@
 // until it touches. The contact instant is found by bisection, so a hand that stops touches
 // (closer than the contact threshold) and never interpenetrates.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,27 @@ AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& optio
 
 // GraspIt!'s Hand::autoGrasp: every DOF closes along its default velocity at once.
 AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions& options = {});
+
+// One static DOF motion, GraspIt!'s moveDOFToContacts: the building block of hand-specific
+// autograsps. Each DOF d moves from its value toward targets[d] by |steps[d]| per step (the
+// sign comes from the target; a zero step holds the DOF where it is). A colliding step is
+// bisected back to the contact instant, and the joints behind each touching link stop (a link
+// already touching at the start stops them if the motion would push it further in).
+struct DofMotion {
+  std::vector<double> targets;  // one per DOF, clamped into the DOF's range
+  std::vector<double> steps;    // one per DOF; magnitudes
+  bool stopAtContact = false;   // end after the first step that brought a contact
+  int maxIterations = 500;      // GraspIt!'s failsafe
+  // Called after every change of the DOF values (each step and each bisection point), before
+  // collisions are checked: lets a caller move the base with the fingers (a compliant close).
+  std::function<void(World&, int robot)> afterDofChange;
+};
+
+// Runs `motion` on robot `robot` (the world is changed). Returns the final DOFs and contacts;
+// `iterations` is the number of steps taken, 0 when nothing could move. Throws
+// graspkit::Error for a bad robot index, a robot that is not a hand, or vectors whose size is
+// not the robot's DOF count.
+AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& motion);
 
 // Opens the DOFs (against their default velocity) in chunks until the hand collides with
 // nothing or every DOF is at its open limit. Returns whether the hand ends collision-free.

@@ -59,9 +59,13 @@ std::vector<int> jointsBehind(const RobotModel& model, const LinkRef& link) {
 
 class Closing {
  public:
-  Closing(World& world, int robot, const AutoGraspOptions& options)
-      : world_(world), robot_(robot), hand_(handBodies(world, robot)) {
+  Closing(World& world, int robot, const DofMotion& motion)
+      : world_(world),
+        robot_(robot),
+        hand_(handBodies(world, robot)),
+        after_change_(motion.afterDofChange) {
     const RobotModel& model = world.robot(robot).model();
+    const auto& values = world.robot(robot).dofValues();
     const int dofs = static_cast<int>(model.dofs.size());
     step_.resize(dofs);
     target_.resize(dofs);
@@ -69,10 +73,10 @@ class Closing {
     joint_stopped_.assign(model.jointCount(), false);
     for (int d = 0; d < dofs; ++d) {
       const Dof& dof = model.dofs[d];
-      const double velocity = options.speedFactor * dof.defaultVelocity;
-      step_[d] = velocity * kStepScale;
-      target_[d] = velocity >= 0 ? dof.max : dof.min;
-      moving_[d] = velocity != 0.0;
+      target_[d] = std::clamp(motion.targets[d], dof.min, dof.max);
+      const double size = std::abs(motion.steps[d]);
+      step_[d] = target_[d] >= values[d] ? size : -size;
+      moving_[d] = size != 0.0;
     }
   }
 
@@ -101,6 +105,7 @@ class Closing {
 
   void apply(const std::vector<double>& values) {
     world_.setDofValues(robot_, values, LimitPolicy::Clamp);
+    if (after_change_) after_change_(world_, robot_);
   }
 
   // Active pairs (link, partner) whose surfaces intersect, among links that moved.
@@ -184,6 +189,7 @@ class Closing {
   World& world_;
   int robot_;
   HandBodies hand_;
+  std::function<void(World&, int)> after_change_;
   std::vector<double> step_, target_;
   std::vector<bool> moving_;
   std::vector<bool> joint_stopped_;
@@ -225,13 +231,32 @@ AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& optio
 
 AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions& options) {
   requireHand(world, robot);
-  Closing closing(world, robot, options);
+  DofMotion motion;
+  for (const Dof& dof : world.robot(robot).model().dofs) {
+    const double velocity = options.speedFactor * dof.defaultVelocity;
+    motion.targets.push_back(velocity >= 0 ? dof.max : dof.min);
+    motion.steps.push_back(velocity * kStepScale);
+  }
+  motion.stopAtContact = options.stopAtContact;
+  motion.maxIterations = options.maxIterations;
+  return moveDofsToContacts(world, robot, motion);
+}
+
+AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& motion) {
+  requireHand(world, robot);
+  const std::size_t dofs = world.robot(robot).model().dofs.size();
+  if (motion.targets.size() != dofs || motion.steps.size() != dofs) {
+    throw Error(fmt::format("robot '{}' has {} DOFs, the motion gives {} targets and {} steps",
+                            world.robot(robot).name(), dofs, motion.targets.size(),
+                            motion.steps.size()));
+  }
+  Closing closing(world, robot, motion);
   AutoGraspResult result;
   closing.stopBlockedLinks(robotContacts(world, robot));
 
   std::vector<double> from, to;
   for (;;) {
-    if (result.iterations >= options.maxIterations) {
+    if (result.iterations >= motion.maxIterations) {
       result.end = MotionEnd::IterationLimit;
       break;
     }
@@ -271,7 +296,7 @@ AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions
     }
     const std::vector<Contact> contacts = robotContacts(world, robot);
     closing.stopTouchingLinks(contacts);
-    if (options.stopAtContact && !contacts.empty()) {
+    if (motion.stopAtContact && !contacts.empty()) {
       result.end = MotionEnd::Contact;
       break;
     }
