@@ -214,7 +214,8 @@ void checkFinger(const FingerCase& finger, unsigned seed) {
     SCOPED_TRACE(::testing::Message()
                  << finger.file << " chain " << finger.chain << " sample " << sample);
     ASSERT_TRUE(ik.success) << ik.failure;
-    EXPECT_LT(ik.iterations, 200);
+    EXPECT_LT(ik.iterations,
+              20);  // Newton from 0.1 rad away: 3 to 5 steps measured; the cap is 200
     max_iterations = std::max(max_iterations, ik.iterations);
     for (std::size_t d = 0; d < truth.size(); ++d)
       EXPECT_NEAR(ik.dofValues[d], drives[d] ? truth[d] : start[d], kDofTolerance) << "DOF " << d;
