@@ -68,9 +68,8 @@ TEST(Corpus, RobotSurveyMatchesGraspIt) {
     EXPECT_EQ(robot->triangleCount(), entry.at("total_triangles").get<std::size_t>());
     EXPECT_EQ(robot->eigengrasps.grasps.size(), entry.at("num_eigengrasps").get<std::size_t>());
     EXPECT_EQ(robot->virtualContacts.size(), entry.at("num_virtual_contacts").get<std::size_t>());
-    // Special types decide for themselves in their plugins (GraspIt!'s Puma560 is no hand).
-    if (robot->type == "Robot" || robot->type == "Hand")
-      EXPECT_EQ(robot->isHand, entry.at("is_hand").get<bool>());
+    // Special types decide in their plugins (GraspIt!'s Puma560 is no hand).
+    EXPECT_EQ(robot->isHand, entry.at("is_hand").get<bool>());
     Robot instance(robot);
     const auto expected = entry.at("dof_values_as_loaded").get<std::vector<double>>();
     for (int d = 0; d < instance.dofCount(); ++d) {

@@ -199,6 +199,7 @@ class Puma560 final : public graspkit::RobotType {
     if (!problem.empty())
       throw graspkit::Error(graspkit::SourceLocation{model.file.string()},
                             "a Puma560 robot needs GraspIt!'s Puma 560 kinematics: " + problem);
+    model.isHand = false;  // an arm: GraspIt!'s Puma560 derives from Robot, not Hand
   }
 
   IkResult inverseKinematics(const Robot& robot, const Transform& target,
