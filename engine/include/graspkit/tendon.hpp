@@ -9,7 +9,7 @@
 // joint torques are the generalised forces of those point forces, so that by virtual work
 // tau_j = -F * dL/dq_j with the route held fixed on its links.
 //
-// The rules reproduce GraspIt!'s HumanHand tendons (see tendonPath for the wrapping rule).
+// The rules reproduce GraspIt!'s tendon-driven hands (see tendonPath for the wrapping rule).
 
 #include <optional>
 #include <string>
@@ -104,6 +104,7 @@ std::vector<Vector3> insertionForces(const TendonPath& path, double force);
 // The torque (force for a prismatic joint) on every joint of the robot, robot-wide joint order,
 // from tension `force` along `path`: the sum over route points of the moment of the point force
 // about each joint axis the point hangs from. A positive torque drives the joint value up.
+// `path` must be the route at the robot's current posture (force directions come from it).
 Eigen::VectorXd tendonJointTorques(const Robot& robot, const TendonPath& path, double force);
 // The same along the tendon's current route.
 Eigen::VectorXd tendonJointTorques(const Robot& robot, int tendon, double force);
