@@ -192,7 +192,10 @@ void readCollisionRule(const fs::path& file, const XMLElement& element, int chai
 class RobotReader {
  public:
   RobotReader(const fs::path& file, const LoadOptions& options, ModelCache* cache)
-      : file_(file), dir_(file.parent_path()), link_dir_(dir_ / "iv"), options_(options),
+      : file_(file),
+        dir_(file.parent_path()),
+        link_dir_(dir_ / "iv"),
+        options_(options),
         cache_(cache) {}
 
   std::shared_ptr<const RobotModel> read() {
@@ -437,8 +440,11 @@ class RobotReader {
     Tendon t;
     t.name = element.Attribute("name") ? element.Attribute("name") : "";
     t.stiffness = xml::optionalNumber(file_, element, "stiffness", 0.0) * 1.0e6;
-    t.restLength = xml::optionalNumber(file_, element, "restLength", 0.0);
-    t.preTensionLength = xml::optionalNumber(file_, element, "preTensionLength", 0.0);
+    // Absent lengths stay absent: the rest length then comes from the default posture.
+    if (xml::child(element, "restLength"))
+      t.restLength = xml::requiredNumber(file_, element, "restLength");
+    if (xml::child(element, "preTensionLength"))
+      t.preTensionLength = xml::requiredNumber(file_, element, "preTensionLength");
     for (const XMLElement* p : xml::children(element, "insertionPoint")) {
       TendonInsertionPoint point;
       point.link = linkRef(*p, "chain", "link");
@@ -461,7 +467,7 @@ class RobotReader {
     w.position = xml::vector3(file_, xml::requiredChild(file_, element, "position"));
     w.orientation = xml::vector3(file_, xml::requiredChild(file_, element, "orientation"));
     w.radius = xml::requiredNumber(file_, element, "radius");
-    w.length = xml::optionalNumber(file_, element, "length", 0.0);
+    w.length = xml::optionalNumber(file_, element, "length", 10.0);  // GraspIt!'s default
     for (const XMLElement* e : xml::children(element, "exemption")) {
       w.exemptions.push_back(e->Attribute("tendon") ? e->Attribute("tendon") : xml::text(*e));
     }
