@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  // Warnings and errors go to stderr, so --json output on stdout stays parseable.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("graspkit"));
   spdlog::set_level(quiet     ? spdlog::level::err
                     : verbose ? spdlog::level::debug
                               : spdlog::level::warn);
