@@ -33,8 +33,10 @@ json pluginsJson(Registry& registry, const std::vector<PluginInfo>& plugins) {
     json p = {{"file", info.file}, {"loaded", info.loaded}};
     if (!info.name.empty()) p["name"] = info.name;
     if (!info.version.empty()) p["version"] = info.version;
-    if (info.loaded) p["provides"] = providesJson(info.provides);
-    else p["error"] = info.error;
+    if (info.loaded)
+      p["provides"] = providesJson(info.provides);
+    else
+      p["error"] = info.error;
     j["plugins"].push_back(p);
   }
   return j;
@@ -56,8 +58,9 @@ void printText(Registry& registry, const std::vector<PluginInfo>& plugins, std::
 
 void addPluginsCommand(CLI::App& app, PluginsOptions& options) {
   CLI::App* cmd = app.add_subcommand(
-      "plugins", "List the plugins on the search path (GRASPKIT_PLUGIN_PATH, then beside the "
-                 "engine, then the install folder) and what each provides");
+      "plugins",
+      "List the plugins on the search path (GRASPKIT_PLUGIN_PATH, then beside the "
+      "engine, then the install folder) and what each provides");
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 

@@ -73,7 +73,8 @@ TEST(RobotPlugins, EverySharedRobotLoadsWithItsOwnTypesPlugin) {
     EXPECT_FALSE(from->plugin.empty());
     EXPECT_EQ(fs::canonical(from->file.parent_path()), fs::canonical(plugin_dir));
   }
-  EXPECT_GE(special, 15);  // Barrett, HumanHand x3, McGrip x4, Puma560, Robonaut x4, RobotIQ x2, ...
+  EXPECT_GE(special,
+            15);  // Barrett, HumanHand x3, McGrip x4, Puma560, Robonaut x4, RobotIQ x2, ...
 }
 
 // Robot `file` alone in a world, for collision-rule queries.
@@ -84,7 +85,9 @@ World worldWith(const fs::path& file) {
 }
 
 bool excluded(const World& world, LinkRef a, LinkRef b) {
-  auto ref = [](LinkRef l) { return l.isBase() ? BodyRef::robotBase(0) : BodyRef::robotLink(0, l); };
+  auto ref = [](LinkRef l) {
+    return l.isBase() ? BodyRef::robotBase(0) : BodyRef::robotLink(0, l);
+  };
   return !robotRulesAllow(world, ref(a), ref(b));
 }
 
@@ -137,7 +140,8 @@ TEST(RobotPlugins, BarrettDistalJointClosesOnAfterTheProximalJointStops) {
   GRASPKIT_REQUIRE_SHARED();
   QuietWarnings quiet;
   World world;
-  world.addRobot(Robot(loadRobotFile(*test::graspitDataDir() / "models/robots/Barrett/Barrett.xml")));
+  world.addRobot(
+      Robot(loadRobotFile(*test::graspitDataDir() / "models/robots/Barrett/Barrett.xml")));
   ASSERT_EQ(world.robot(0).model().type, "Barrett");
   // Put a block where chain 2's proximal link (link 0) will be when its DOF reaches 0.7 rad:
   // closing sweeps the proximal link into it, well before the distal link can get there.

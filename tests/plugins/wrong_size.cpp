@@ -10,8 +10,8 @@ void registerNothing(graspkit::Registrar& registrar) {
 
 extern "C" __attribute__((visibility("default"))) const graspkit_plugin_descriptor*
 graspkit_plugin_v1() {
-  static const graspkit_plugin_descriptor descriptor{
-      GRASPKIT_PLUGIN_ABI_VERSION, sizeof(graspkit_plugin_descriptor) + 16, "wrong_size", "1",
-      registerNothing};
+  static const graspkit_plugin_descriptor descriptor{GRASPKIT_PLUGIN_ABI_VERSION,
+                                                     sizeof(graspkit_plugin_descriptor) + 16,
+                                                     "wrong_size", "1", registerNothing};
   return &descriptor;
 }

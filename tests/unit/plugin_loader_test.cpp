@@ -189,7 +189,8 @@ TEST(PluginLoader, LoadAllReportsEveryFileLoadedOrNot) {
     if (info.loaded) {
       ++loaded;
       EXPECT_EQ(info.name, "corpus_good");
-      EXPECT_EQ(describeProvides(info), "robot type CorpusGripper, quality measure corpus_constant");
+      EXPECT_EQ(describeProvides(info),
+                "robot type CorpusGripper, quality measure corpus_constant");
     } else {
       EXPECT_FALSE(info.error.empty()) << info.file;
     }
@@ -204,8 +205,10 @@ TEST(PluginLoader, SearchesTheEnvironmentFirstThenBesideTheEngine) {
   setenv("GRASPKIT_PLUGIN_PATH", (kGood.string() + ":/nonexistent/folder").c_str(), 1);
   Registry registry;
   const std::vector<fs::path> path = registry.plugins().searchPath();
-  if (old) setenv("GRASPKIT_PLUGIN_PATH", saved.c_str(), 1);
-  else unsetenv("GRASPKIT_PLUGIN_PATH");
+  if (old)
+    setenv("GRASPKIT_PLUGIN_PATH", saved.c_str(), 1);
+  else
+    unsetenv("GRASPKIT_PLUGIN_PATH");
   ASSERT_GE(path.size(), 3u);
   EXPECT_EQ(path[0], kGood);
   EXPECT_EQ(path[1], fs::path("/nonexistent/folder"));

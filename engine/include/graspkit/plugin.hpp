@@ -36,12 +36,11 @@ using graspkit_plugin_entry = const graspkit_plugin_descriptor* (*)();
 
 }  // extern "C"
 
-#define GRASPKIT_PLUGIN(plugin_name, plugin_version, register_function)                        \
-  extern "C" __attribute__((visibility("default"))) const graspkit_plugin_descriptor*          \
-  graspkit_plugin_v1() {                                                                       \
-    static const graspkit_plugin_descriptor descriptor{GRASPKIT_PLUGIN_ABI_VERSION,            \
-                                                       sizeof(graspkit_plugin_descriptor),     \
-                                                       plugin_name, plugin_version,            \
-                                                       register_function};                     \
-    return &descriptor;                                                                        \
+#define GRASPKIT_PLUGIN(plugin_name, plugin_version, register_function)               \
+  extern "C" __attribute__((visibility("default"))) const graspkit_plugin_descriptor* \
+  graspkit_plugin_v1() {                                                              \
+    static const graspkit_plugin_descriptor descriptor{                               \
+        GRASPKIT_PLUGIN_ABI_VERSION, sizeof(graspkit_plugin_descriptor), plugin_name, \
+        plugin_version, register_function};                                           \
+    return &descriptor;                                                               \
   }

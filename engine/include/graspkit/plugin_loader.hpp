@@ -24,7 +24,7 @@ enum class FactoryKind;
 
 struct PluginInfo {
   std::filesystem::path file;
-  std::string name;     // from the descriptor; empty when it could not be read
+  std::string name;  // from the descriptor; empty when it could not be read
   std::string version;
   bool loaded = false;  // false: `error` says why
   std::string error;

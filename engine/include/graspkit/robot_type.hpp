@@ -28,8 +28,7 @@ class RobotType {
                                      const IkRequest& request) const;
 
   // Closes the hand. The default is the engine's autoGrasp (genericAutoGrasp).
-  virtual AutoGraspResult autoGrasp(World& world, int robot,
-                                    const AutoGraspOptions& options) const;
+  virtual AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options) const;
 };
 
 }  // namespace graspkit

@@ -175,8 +175,8 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
   } catch (const std::exception& e) {
     return fail(fmt::format("plugin '{}' threw while registering: {}", info.name, e.what()));
   } catch (...) {
-    return fail(fmt::format("plugin '{}' threw a non-standard exception while registering",
-                            info.name));
+    return fail(
+        fmt::format("plugin '{}' threw a non-standard exception while registering", info.name));
   }
 
   // Check everything before committing anything.
@@ -211,8 +211,7 @@ const PluginInfo& PluginLoader::load(const fs::path& file) {
   const fs::path key = fs::weakly_canonical(file, ec);
   auto it = probed_.find(ec ? file : key);
   if (it == probed_.end()) {
-    if (!fs::exists(file, ec))
-      throw Error(fmt::format("plugin {}: no such file", file.string()));
+    if (!fs::exists(file, ec)) throw Error(fmt::format("plugin {}: no such file", file.string()));
     it = probed_.emplace(ec ? file : key, tryLoad(file)).first;
   }
   if (!it->second.loaded)

@@ -10,8 +10,10 @@ namespace graspkit {
 
 const char* toString(FactoryKind kind) {
   switch (kind) {
-    case FactoryKind::RobotType: return "robot type";
-    case FactoryKind::QualityMeasure: return "quality measure";
+    case FactoryKind::RobotType:
+      return "robot type";
+    case FactoryKind::QualityMeasure:
+      return "quality measure";
   }
   return "factory";
 }
@@ -74,16 +76,17 @@ std::optional<Provenance> Registry::provenance(FactoryKind kind, const std::stri
 std::optional<Registry::Entry> Registry::find(FactoryKind kind, const std::string& name) {
   std::lock_guard lock(mutex_);
   auto it = entries_.find(Key{kind, name});
-  if (it == entries_.end() && loader_.loadProviding(kind, name)) it = entries_.find(Key{kind, name});
+  if (it == entries_.end() && loader_.loadProviding(kind, name))
+    it = entries_.find(Key{kind, name});
   if (it == entries_.end()) return std::nullopt;
   return it->second;
 }
 
 void Registry::throwUnknown(FactoryKind kind, const std::string& name) {
   loader_.loadAll();  // so the message lists everything the path offers
-  std::string message = fmt::format("unknown {} '{}'; available: {}; plugin search path: {}",
-                                    toString(kind), name, fmt::join(names(kind), ", "),
-                                    loader_.describeSearchPath());
+  std::string message =
+      fmt::format("unknown {} '{}'; available: {}; plugin search path: {}", toString(kind), name,
+                  fmt::join(names(kind), ", "), loader_.describeSearchPath());
   for (const PluginInfo& failed : loader_.failures())
     message += fmt::format("; plugin {} failed to load: {}", failed.file.string(), failed.error);
   throw Error(message);
