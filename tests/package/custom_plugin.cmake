@@ -116,7 +116,6 @@ endif()
 
 # 3d. The plugin's configure() refuses a gripper without its three fingers, naming the file.
 string(FIND "${gripper}" "<chain>" last_chain REVERSE)
-string(FIND "${gripper}" "</robot>" robot_end)
 string(FIND "${gripper}" "<approachDirection>" approach)
 string(SUBSTRING "${gripper}" 0 ${last_chain} head)
 string(SUBSTRING "${gripper}" ${approach} -1 tail)
