@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/world_file.hpp"
+#include "graspkit/registry.hpp"
 
 namespace graspkit::cli {
 namespace {
@@ -38,9 +39,22 @@ json bodyJson(const Body& body) {
   return j;
 }
 
+// Who provided the robot's type: the plugin's name, version and file, or the engine itself.
+json typeProviderJson(const RobotModel& m) {
+  json j = {{"description", m.typeProvider.empty() ? "built in" : m.typeProvider}};
+  const auto from = Registry::global().provenance(FactoryKind::RobotType, m.type);
+  if (m.typeProvider != "generic fallback" && from && !from->plugin.empty()) {
+    j["plugin"] = from->plugin;
+    j["version"] = from->version;
+    j["file"] = from->file.string();
+  }
+  return j;
+}
+
 json robotJson(const Robot& robot) {
   const RobotModel& m = robot.model();
   json j = {{"name", robot.name()}, {"type", m.type}, {"file", m.file.string()}};
+  j["type_provider"] = typeProviderJson(m);
   j["dof_values"] = std::vector<double>(robot.dofValues().begin(), robot.dofValues().end());
   j["dofs"] = json::array();
   for (const Dof& dof : m.dofs) {
@@ -114,6 +128,15 @@ void printText(const json& j, std::ostream& out) {
     out << fmt::format("robot {} (type {}): {} DOFs, {} chains, {} triangles\n",
                        r["name"].get<std::string>(), r["type"].get<std::string>(), r["dofs"].size(),
                        r["chains"].size(), r["triangles"].get<std::size_t>());
+    const json& provider = r["type_provider"];
+    if (provider.contains("plugin")) {
+      out << fmt::format("  type {} from plugin {} ({})\n", r["type"].get<std::string>(),
+                         provider["description"].get<std::string>(),
+                         provider["file"].get<std::string>());
+    } else {
+      out << fmt::format("  type {} {}\n", r["type"].get<std::string>(),
+                         provider["description"].get<std::string>());
+    }
     out << fmt::format("  dof values [{}]\n", fixed(r["dof_values"]));
     out << fmt::format("  {:<28} t [{}]  q [{}]\n", r["base"]["name"].get<std::string>(),
                        fixed(r["base"]["translation"]), fixed(r["base"]["quaternion"]));
