@@ -5,9 +5,9 @@
 //
 // Search path, in order:
 //   1. GRASPKIT_PLUGIN_PATH (colon-separated folders);
-//   2. the plugin folder beside the engine library and beside the running program:
-//      <dir>/graspkit/plugins and <dir>/../lib/graspkit/plugins, so a build tree and an install
-//      both work with no environment variable;
+//   2. the plugin folder beside the engine library (<libdir>/graspkit/plugins) and beside the
+//      running program (<bindir>/../lib/graspkit/plugins), so a build tree and an install both
+//      work with no environment variable;
 //   3. the folder recorded when the engine was installed.
 // A plugin file is any regular `*.so` file in those folders (not their subfolders).
 

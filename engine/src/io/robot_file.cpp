@@ -224,7 +224,12 @@ class RobotReader {
     checkLinkReferences(root, *robot);
     readExtras(root, *robot);
     if (robot->robotType) {
-      xml::locatedAt(file_, root, [&] { robot->robotType->configure(*robot); });
+      try {
+        robot->robotType->configure(*robot);
+      } catch (const Error& e) {
+        // The type's message, located at <robot> (its own location names this file already).
+        throw Error(xml::at(file_, root), e.message());
+      }
     }
     return robot;
   }

@@ -83,11 +83,11 @@ PluginLoader::PluginLoader(Registry& registry) : registry_(registry) {}
 std::vector<fs::path> PluginLoader::searchPath() const {
   if (search_path_) return *search_path_;
   std::vector<fs::path> folders = splitPathList(std::getenv("GRASPKIT_PLUGIN_PATH"));
-  for (const fs::path& base : {engineLibraryFolder(), programFolder()}) {
-    if (base.empty()) continue;
-    folders.push_back(base / "graspkit" / "plugins");
-    folders.push_back((base / ".." / "lib" / "graspkit" / "plugins").lexically_normal());
-  }
+  // Beside the library: <libdir>/graspkit/plugins. Beside the program: <bindir>/../lib/...
+  if (const fs::path lib = engineLibraryFolder(); !lib.empty())
+    folders.push_back(lib / "graspkit" / "plugins");
+  if (const fs::path bin = programFolder(); !bin.empty())
+    folders.push_back((bin / ".." / "lib" / "graspkit" / "plugins").lexically_normal());
 #ifdef GRASPKIT_INSTALLED_PLUGIN_DIR
   folders.emplace_back(GRASPKIT_INSTALLED_PLUGIN_DIR);
 #endif
