@@ -14,6 +14,7 @@
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/log.hpp"
+#include "quiet_warnings.hpp"
 #include "reference.hpp"
 
 namespace graspkit {
@@ -41,12 +42,7 @@ std::string rootElement(const fs::path& file) {
   return doc.RootElement()->Name();
 }
 
-// Silences load warnings for the duration of a test (the corpus has many unknown tags).
-struct QuietWarnings {
-  QuietWarnings() : previous(setWarningHandler([](const SourceLocation&, const std::string&) {})) {}
-  ~QuietWarnings() { setWarningHandler(previous); }
-  WarningHandler previous;
-};
+using test::QuietWarnings;
 
 TEST(Corpus, RobotSurveyMatchesGraspIt) {
   GRASPKIT_REQUIRE_SHARED();

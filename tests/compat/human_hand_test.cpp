@@ -20,6 +20,7 @@
 #include "graspkit/log.hpp"
 #include "graspkit/robot.hpp"
 #include "graspkit/tendon.hpp"
+#include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"
 #include "xml_scan.hpp"
@@ -35,11 +36,7 @@ const std::vector<std::string> kTendonHandFiles = {
     "models/robots/McHand/McGrip_tall.xml",
 };
 
-struct QuietWarnings {
-  QuietWarnings() : previous(setWarningHandler([](const SourceLocation&, const std::string&) {})) {}
-  ~QuietWarnings() { setWarningHandler(previous); }
-  WarningHandler previous;
-};
+using test::QuietWarnings;
 
 std::shared_ptr<const RobotModel> load(const std::string& file) {
   QuietWarnings quiet;

@@ -14,6 +14,7 @@
 #include "graspkit/log.hpp"
 #include "graspkit/registry.hpp"
 #include "graspkit/world.hpp"
+#include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"
 
@@ -23,11 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct QuietWarnings {
-  QuietWarnings() : previous(setWarningHandler([](const SourceLocation&, const std::string&) {})) {}
-  ~QuietWarnings() { setWarningHandler(previous); }
-  WarningHandler previous;
-};
+using test::QuietWarnings;
 
 // The <robot type> attribute, read straight from the file.
 std::string typeInFile(const fs::path& file) {
