@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "script_flags.hpp"
+
 namespace graspkit::cli {
 
 struct InfoOptions {
@@ -47,6 +49,17 @@ void addPluginsCommand(CLI::App& app, PluginsOptions& options);
 // Lists every plugin on the search path and what it provides. Exit status 1 when a plugin on the
 // path failed to load (each failure is listed with its reason).
 int runPlugins(const PluginsOptions& options, std::ostream& out);
+
+struct RunOptions {
+  std::filesystem::path script;
+  std::vector<std::string> args;
+  ScriptFlags flags;
+};
+
+void addRunCommand(CLI::App& app, RunOptions& options);
+// Exit status: 0, the script's os.exit status, 1 after a Lua error (traceback on stderr), 124
+// after --timeout.
+int runRun(const RunOptions& options, bool quiet);
 
 // The options every command that loads files shares: --root and --generic-robots.
 void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,

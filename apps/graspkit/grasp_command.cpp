@@ -104,7 +104,9 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
 
 int runGrasp(const GraspOptions& options, std::ostream& out) {
   const WrenchSpaceType gws = parseGws(options.gws);  // before the (slower) load
-  World world = loadWorldFile(options.world, LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  World world = loadWorldFile(
+      options.world,
+      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
   world.robot(options.robot);  // range check with a clear message
   const BodyRef object = findObject(world, options.object);
   if (!options.pose.empty()) world.setRobotPose(options.robot, parsePose(options.pose));

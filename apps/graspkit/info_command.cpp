@@ -164,7 +164,9 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
 }
 
 int runInfo(const InfoOptions& options, std::ostream& out) {
-  World world = loadAnyFile(options.file, LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  World world = loadAnyFile(
+      options.file,
+      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
   if (!options.dofs.empty())
     world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
   json j = worldJson(world);

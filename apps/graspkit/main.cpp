@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   graspkit::cli::addGraspCommand(app, grasp);
   graspkit::cli::PluginsOptions plugins;
   graspkit::cli::addPluginsCommand(app, plugins);
+  graspkit::cli::RunOptions run;
+  graspkit::cli::addRunCommand(app, run);
 
   try {
     app.parse(argc, argv);
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return graspkit::cli::runInfo(info, std::cout);
     if (app.got_subcommand("grasp")) return graspkit::cli::runGrasp(grasp, std::cout);
     if (app.got_subcommand("plugins")) return graspkit::cli::runPlugins(plugins, std::cout);
+    if (app.got_subcommand("run")) return graspkit::cli::runRun(run, quiet);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;

@@ -1,0 +1,37 @@
+// graspkit run: run one Lua scenario script (see docs/lua.md).
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "commands.hpp"
+#include "graspkit/lua/script_host.hpp"
+
+namespace graspkit::cli {
+
+void addRunCommand(CLI::App& app, RunOptions& options) {
+  CLI::App* cmd =
+      app.add_subcommand("run", "Run a Lua scenario script (arguments after -- go to arg)");
+  cmd->add_option("script", options.script, "The .lua script")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("args", options.args, "Arguments for the script, after --");
+  addScriptFlags(*cmd, options.flags);
+}
+
+int runRun(const RunOptions& options, bool quiet) {
+  lua::ScriptOptions script_options = scriptOptions(options.flags, quiet);
+  script_options.args = options.args;
+  lua::ScriptHost host(options.script, std::move(script_options));
+  std::cout.flush();
+  const lua::ScriptOutcome outcome = host.run();
+  std::fflush(stdout);  // Lua's print writes through C stdio
+  if (outcome.ok) return 0;
+  if (!outcome.message.empty() && outcome.exitStatus != 0 &&
+      !outcome.message.starts_with("os.exit")) {
+    std::cerr << "graspkit: error: " << outcome.message << "\n";
+  }
+  return outcome.timedOut ? kTimedOutStatus : outcome.exitStatus;
+}
+
+}  // namespace graspkit::cli

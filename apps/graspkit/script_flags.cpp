@@ -1,0 +1,35 @@
+#include "script_flags.hpp"
+
+#include <unistd.h>
+
+#include "commands.hpp"
+
+namespace graspkit::cli {
+
+void addScriptFlags(CLI::App& command, ScriptFlags& flags) {
+  command.add_option("--allow-read", flags.allowRead, "Folder the script may also read below")
+      ->check(CLI::ExistingDirectory);
+  command
+      .add_option("--allow-write", flags.allowWrite,
+                  "Folder the script may also write (and read) below")
+      ->check(CLI::ExistingDirectory);
+  command.add_flag("--unsafe", flags.unsafe,
+                   "No sandbox: full io and os libraries, C modules, any file");
+  command.add_option("--timeout", flags.timeout, "Stop a script after this many seconds")
+      ->check(CLI::PositiveNumber);
+  addLoadFlags(command, flags.roots, flags.genericRobots);
+}
+
+lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet) {
+  lua::ScriptOptions options;
+  options.sandbox.unsafe = flags.unsafe;
+  options.sandbox.allowRead = flags.allowRead;
+  options.sandbox.allowWrite = flags.allowWrite;
+  options.timeoutSeconds = flags.timeout;
+  options.load.roots = flags.roots;
+  options.load.genericRobotFallback = flags.genericRobots;
+  options.showProgress = !quiet && isatty(STDERR_FILENO) != 0;
+  return options;
+}
+
+}  // namespace graspkit::cli

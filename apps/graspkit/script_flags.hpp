@@ -1,0 +1,31 @@
+#pragma once
+// The flags `graspkit run` and `graspkit test` share: the sandbox, the time limit, model roots.
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "graspkit/lua/script_host.hpp"
+
+namespace graspkit::cli {
+
+struct ScriptFlags {
+  std::vector<std::filesystem::path> allowRead;
+  std::vector<std::filesystem::path> allowWrite;
+  bool unsafe = false;
+  std::optional<double> timeout;  // seconds
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+};
+
+void addScriptFlags(CLI::App& command, ScriptFlags& flags);
+
+// The host options for these flags; progress shows when stderr is a terminal and not --quiet.
+lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet);
+
+// Exit status for a script that timed out, as timeout(1) uses.
+inline constexpr int kTimedOutStatus = 124;
+
+}  // namespace graspkit::cli

@@ -1,0 +1,53 @@
+#pragma once
+// What a scenario script may touch. A sandboxed script has no way to run programs or load native
+// code (os.execute, io.popen, package.loadlib, C modules, the debug library, binary chunks are
+// gone) and reaches files only through PathPolicy: reads below the readable folders, writes
+// below the writable ones. --unsafe lifts it all.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+struct lua_State;
+
+namespace graspkit::lua {
+
+struct SandboxOptions {
+  bool unsafe = false;                            // no sandbox at all
+  std::vector<std::filesystem::path> allowRead;   // --allow-read
+  std::vector<std::filesystem::path> allowWrite;  // --allow-write (readable too)
+};
+
+// Folder-based file permissions. A path is checked after resolving `..` and symbolic links
+// (of the part that exists), so neither leads out of an allowed folder.
+class PathPolicy {
+ public:
+  PathPolicy() = default;  // unrestricted
+  PathPolicy(std::vector<std::filesystem::path> readable,
+             std::vector<std::filesystem::path> writable);
+  static PathPolicy unrestricted() { return {}; }
+
+  bool restricted() const { return restricted_; }
+  bool mayRead(const std::filesystem::path& file) const;
+  bool mayWrite(const std::filesystem::path& file) const;
+  // Throw graspkit::Error naming the file, what was attempted and the allowed folders.
+  void checkRead(const std::filesystem::path& file) const;
+  void checkWrite(const std::filesystem::path& file) const;
+
+  const std::vector<std::filesystem::path>& readable() const { return readable_; }
+  const std::vector<std::filesystem::path>& writable() const { return writable_; }
+
+ private:
+  bool restricted_ = false;
+  std::vector<std::filesystem::path> readable_;  // canonical; writable folders included
+  std::vector<std::filesystem::path> writable_;  // canonical
+};
+
+// Replaces the standard library's dangerous parts in `L` (after luaL_openlibs): removes what
+// runs programs or native code, and routes io.open, io.lines, io.input, io.output, dofile,
+// loadfile, os.remove and os.rename through `policy`. `policy` must outlive the state. Lua
+// modules load through require only from `module_folders` (no C modules).
+void applySandbox(lua_State* L, const PathPolicy& policy,
+                  const std::vector<std::filesystem::path>& module_folders);
+
+}  // namespace graspkit::lua

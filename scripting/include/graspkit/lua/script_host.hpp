@@ -1,0 +1,66 @@
+#pragma once
+// A Lua 5.4 state that runs one graspkit scenario: the `graspkit` module loaded (a global, and
+// through require), the sandbox applied, `arg` filled, and an optional time limit. A host
+// program makes one ScriptHost per script; `graspkit run` and `graspkit test` are two such hosts.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graspkit/io/load_options.hpp"
+#include "graspkit/lua/sandbox.hpp"
+
+struct lua_State;
+
+namespace graspkit::lua {
+
+struct ScriptOptions {
+  SandboxOptions sandbox;
+  // Wall-clock limit for run() and for each protectedCall(); none when empty.
+  std::optional<double> timeoutSeconds;
+  // Model roots (--root) and the generic robot fallback. The roots are readable in the sandbox
+  // and searched for relative model paths.
+  LoadOptions load;
+  std::vector<std::string> args;  // arg[1], arg[2], ...; arg[0] is the script
+  bool showProgress = false;      // graspkit.progress() draws on stderr (a terminal)
+};
+
+// How a run ended.
+struct ScriptOutcome {
+  bool ok = true;
+  int exitStatus = 0;     // os.exit(n) sets it; 1 after an error
+  bool timedOut = false;  // the time limit ended it
+  std::string message;    // the error with its Lua traceback; empty when ok
+};
+
+class ScriptHost {
+ public:
+  // Throws graspkit::Error when the script file does not exist.
+  ScriptHost(const std::filesystem::path& script, ScriptOptions options);
+  ~ScriptHost();
+  ScriptHost(const ScriptHost&) = delete;
+  ScriptHost& operator=(const ScriptHost&) = delete;
+
+  // Loads the script and runs it to its end.
+  ScriptOutcome run();
+
+  // Calls the function below its `nargs` arguments on top of the stack, with a traceback on error
+  // and the time limit counted from now. Results are left on the stack when ok.
+  ScriptOutcome protectedCall(int nargs, int nresults);
+
+  // Runs a chunk of Lua source as if it were part of the script (tests, hosts).
+  ScriptOutcome runString(const std::string& source, const std::string& chunk_name);
+
+  lua_State* state() const { return L_; }
+  const std::filesystem::path& script() const;
+  const PathPolicy& pathPolicy() const;
+
+ private:
+  struct Context;
+  std::unique_ptr<Context> context_;
+  lua_State* L_ = nullptr;
+};
+
+}  // namespace graspkit::lua

@@ -1,0 +1,59 @@
+#pragma once
+// The engine objects a script holds. A world is shared by every body, robot and grasp taken
+// from it, so they stay valid (and see its changes) however long the script keeps them.
+
+#include <memory>
+#include <optional>
+
+#include "graspkit/body_ref.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/ray_scene.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit::lua {
+
+inline constexpr const char* kWorldClass = "graspkit.World";
+inline constexpr const char* kBodyClass = "graspkit.Body";
+inline constexpr const char* kRobotClass = "graspkit.Robot";
+inline constexpr const char* kGraspClass = "graspkit.Grasp";
+
+struct ScriptWorld {
+  World world;
+  std::filesystem::path file;  // where it was loaded from or last saved; empty for new_world()
+  // Built on the first raycast and brought up to date before each one.
+  std::unique_ptr<RayScene> rays;
+  std::size_t raySceneBodyCount = 0;
+};
+using WorldHandle = std::shared_ptr<ScriptWorld>;
+
+struct BoundBody {
+  WorldHandle world;
+  BodyRef ref;
+};
+
+struct BoundRobot {
+  WorldHandle world;
+  int index = 0;  // 0-based inside; robot:index() reports index + 1
+};
+
+struct BoundGrasp {
+  WorldHandle world;
+  Grasp grasp;
+};
+
+void pushWorld(lua_State* L, WorldHandle world);
+void pushBody(lua_State* L, const WorldHandle& world, const BodyRef& ref);
+void pushRobot(lua_State* L, const WorldHandle& world, int index);
+void pushGrasp(lua_State* L, const WorldHandle& world, Grasp grasp);
+// A contact as a plain table: body1, body2 (Body objects), point1, point2, normal, distance, mu.
+void pushContact(lua_State* L, const WorldHandle& world, const Contact& contact);
+
+ScriptWorld& toWorld(lua_State* L, int arg);
+BoundBody& toBody(lua_State* L, int arg);
+BoundRobot& toRobot(lua_State* L, int arg);
+BoundGrasp& toGrasp(lua_State* L, int arg);
+
+// A body argument: a Body object of `world`, or the name of one of its bodies or links.
+BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world);
+
+}  // namespace graspkit::lua

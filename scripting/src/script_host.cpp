@@ -1,0 +1,232 @@
+#include "graspkit/lua/script_host.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include "graspkit/error.hpp"
+#include "lua_api.hpp"
+#include "module.hpp"
+#include "script_context.hpp"
+
+namespace graspkit::lua {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The error value os.exit raises: a unique address, so no script value can be mistaken for it.
+char exit_sentinel;
+
+// How often (in VM instructions) the time limit is checked: cheap, and a tight loop still stops
+// within milliseconds of the limit.
+constexpr int kHookInterval = 10000;
+
+void timeLimitHook(lua_State* L, lua_Debug*) {
+  const ScriptContext& context = scriptContext(L);
+  if (!context.deadline || std::chrono::steady_clock::now() < *context.deadline) return;
+  // From now on every instruction raises, so a pcall in the script cannot swallow the limit.
+  lua_sethook(L, timeLimitHook, LUA_MASKCOUNT, 1);
+  luaL_error(L, "time limit of %f s exceeded (--timeout)", *context.options.timeoutSeconds);
+}
+
+int exitScript(lua_State* L) {
+  int status = 0;
+  if (lua_isboolean(L, 1)) {
+    status = lua_toboolean(L, 1) ? 0 : 1;
+  } else if (!lua_isnoneornil(L, 1)) {
+    status = static_cast<int>(luaL_checkinteger(L, 1));
+  }
+  scriptContext(L).exitStatus = status;
+  lua_pushlightuserdata(L, &exit_sentinel);
+  return lua_error(L);
+}
+
+int traceback(lua_State* L) {
+  if (lua_touserdata(L, 1) == &exit_sentinel) return 1;
+  const char* message = lua_tostring(L, 1);
+  if (message == nullptr) {
+    message = luaL_tolstring(L, 1, nullptr);  // an error value that is not a string
+  }
+  luaL_traceback(L, L, message, 1);
+  return 1;
+}
+
+std::vector<fs::path> modelRoots(const LoadOptions& load) {
+  std::vector<fs::path> roots = load.roots;
+  if (load.useEnvironment) {
+    for (const char* name : {"GRASPKIT_ROOT", "GRASPIT"}) {
+      if (const char* value = std::getenv(name); value != nullptr && *value != '\0') {
+        roots.emplace_back(value);
+      }
+    }
+  }
+  for (fs::path& root : roots) root = fs::absolute(root);
+  return roots;
+}
+
+PathPolicy makePolicy(const ScriptContext& context) {
+  const SandboxOptions& sandbox = context.options.sandbox;
+  if (sandbox.unsafe) return PathPolicy::unrestricted();
+  std::vector<fs::path> readable = {context.scriptFolder};
+  readable.insert(readable.end(), sandbox.allowRead.begin(), sandbox.allowRead.end());
+  readable.insert(readable.end(), context.modelRoots.begin(), context.modelRoots.end());
+  std::vector<fs::path> writable = {context.scriptFolder};
+  writable.insert(writable.end(), sandbox.allowWrite.begin(), sandbox.allowWrite.end());
+  return PathPolicy(std::move(readable), std::move(writable));
+}
+
+void setArgTable(lua_State* L, const ScriptContext& context) {
+  lua_createtable(L, static_cast<int>(context.options.args.size()), 1);
+  lua_pushstring(L, context.script.string().c_str());
+  lua_rawseti(L, -2, 0);
+  for (std::size_t i = 0; i < context.options.args.size(); ++i) {
+    lua_pushstring(L, context.options.args[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setglobal(L, "arg");
+}
+
+void loadModule(lua_State* L) {
+  // require("graspkit") and the global `graspkit` are the same table.
+  luaL_requiref(L, "graspkit", openGraspkitModule, 1);
+  lua_pop(L, 1);
+}
+
+}  // namespace
+
+struct ScriptHost::Context : ScriptContext {};
+
+ScriptContext& scriptContext(lua_State* L) {
+  return **static_cast<ScriptContext**>(lua_getextraspace(L));
+}
+
+fs::path ScriptContext::inputPath(const std::string& name) const {
+  fs::path file(name);
+  if (file.is_relative()) {
+    std::vector<fs::path> candidates = {fs::current_path() / file, scriptFolder / file};
+    for (const fs::path& root : modelRoots) candidates.push_back(root / file);
+    file = candidates.front();
+    for (const fs::path& candidate : candidates) {
+      std::error_code ec;
+      if (fs::exists(candidate, ec)) {
+        file = candidate;
+        break;
+      }
+    }
+  }
+  paths.checkRead(file);
+  return file;
+}
+
+fs::path ScriptContext::outputPath(const std::string& name) const {
+  fs::path file = fs::absolute(fs::path(name));
+  paths.checkWrite(file);
+  return file;
+}
+
+ScriptHost::ScriptHost(const fs::path& script, ScriptOptions options)
+    : context_(std::make_unique<Context>()) {
+  std::error_code ec;
+  if (!fs::is_regular_file(script, ec)) {
+    throw Error(SourceLocation{script.string()}, "no such script file");
+  }
+  context_->options = std::move(options);
+  context_->script = fs::absolute(script);
+  context_->scriptFolder = context_->script.parent_path();
+  context_->modelRoots = modelRoots(context_->options.load);
+  context_->paths = makePolicy(*context_);
+
+  L_ = luaL_newstate();
+  if (L_ == nullptr) throw Error("cannot create a Lua state (out of memory)");
+  *static_cast<ScriptContext**>(lua_getextraspace(L_)) = context_.get();
+  luaL_openlibs(L_);
+  if (context_->options.sandbox.unsafe) {
+    // Lua modules beside the script are found with or without the sandbox.
+    lua_getglobal(L_, "package");
+    lua_pushstring(L_, (context_->scriptFolder / "?.lua").c_str());
+    lua_pushstring(L_, ";");
+    lua_getfield(L_, -3, "path");
+    lua_concat(L_, 3);
+    lua_setfield(L_, -2, "path");
+    lua_pop(L_, 1);
+  } else {
+    applySandbox(L_, context_->paths, {context_->scriptFolder});
+  }
+  lua_getglobal(L_, "os");
+  lua_pushcfunction(L_, exitScript);
+  lua_setfield(L_, -2, "exit");
+  lua_pop(L_, 1);
+  loadModule(L_);
+  setArgTable(L_, *context_);
+}
+
+ScriptHost::~ScriptHost() {
+  if (L_ != nullptr) lua_close(L_);
+}
+
+const fs::path& ScriptHost::script() const {
+  return context_->script;
+}
+
+const PathPolicy& ScriptHost::pathPolicy() const {
+  return context_->paths;
+}
+
+ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
+  const int function = lua_gettop(L_) - nargs;
+  lua_pushcfunction(L_, traceback);
+  lua_insert(L_, function);
+  if (const auto& limit = context_->options.timeoutSeconds) {
+    context_->deadline = std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(*limit));
+    lua_sethook(L_, timeLimitHook, LUA_MASKCOUNT, kHookInterval);
+  }
+  context_->exitStatus.reset();
+  const int status = lua_pcall(L_, nargs, nresults, function);
+  const bool timed_out =
+      context_->deadline && std::chrono::steady_clock::now() >= *context_->deadline;
+  lua_sethook(L_, nullptr, 0, 0);
+  context_->deadline.reset();
+  lua_remove(L_, function);
+
+  ScriptOutcome outcome;
+  if (status == LUA_OK) return outcome;
+  if (lua_touserdata(L_, -1) == &exit_sentinel) {
+    lua_pop(L_, 1);
+    outcome.exitStatus = context_->exitStatus.value_or(0);
+    outcome.ok = outcome.exitStatus == 0;
+    if (!outcome.ok) outcome.message = fmt::format("os.exit({})", outcome.exitStatus);
+    return outcome;
+  }
+  outcome.ok = false;
+  outcome.exitStatus = 1;
+  outcome.timedOut = timed_out;
+  const char* message = lua_tostring(L_, -1);
+  outcome.message = message != nullptr ? message : "(error object is not a string)";
+  lua_pop(L_, 1);
+  return outcome;
+}
+
+ScriptOutcome ScriptHost::run() {
+  const std::string name = context_->script.string();
+  if (luaL_loadfilex(L_, name.c_str(), "t") != LUA_OK) {
+    ScriptOutcome outcome{false, 1, false, lua_tostring(L_, -1)};
+    lua_pop(L_, 1);
+    return outcome;
+  }
+  return protectedCall(0, 0);
+}
+
+ScriptOutcome ScriptHost::runString(const std::string& source, const std::string& chunk_name) {
+  const std::string chunk = "=" + chunk_name;
+  if (luaL_loadbufferx(L_, source.data(), source.size(), chunk.c_str(), "t") != LUA_OK) {
+    ScriptOutcome outcome{false, 1, false, lua_tostring(L_, -1)};
+    lua_pop(L_, 1);
+    return outcome;
+  }
+  return protectedCall(0, 0);
+}
+
+}  // namespace graspkit::lua
