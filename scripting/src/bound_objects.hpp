@@ -5,6 +5,8 @@
 #include <memory>
 #include <optional>
 
+#include <lua.hpp>
+
 #include "graspkit/body_ref.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/ray_scene.hpp"

@@ -15,16 +15,24 @@ std::string functionNameInModule(lua_State* L, lua_Debug* ar) {
   std::string name = "?";
   const int top = lua_gettop(L);
   lua_getinfo(L, "f", ar);  // the function, at top + 1
-  if (lua_getfield(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE) == LUA_TTABLE &&
-      lua_getfield(L, -1, "graspkit") == LUA_TTABLE) {
+  // Searches the table on top of the stack for the function; pops the table.
+  auto search = [&](const std::string& prefix) {
     lua_pushnil(L);
     while (lua_next(L, -2) != 0) {
       if (lua_rawequal(L, -1, top + 1) && lua_type(L, -2) == LUA_TSTRING) {
-        name = std::string("graspkit.") + lua_tostring(L, -2);
+        name = prefix + lua_tostring(L, -2);
       }
       lua_pop(L, 1);
     }
+    lua_pop(L, 1);
+  };
+  if (lua_getfield(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE) == LUA_TTABLE &&
+      lua_getfield(L, -1, "graspkit") == LUA_TTABLE) {
+    search("graspkit.");
   }
+  lua_settop(L, top + 1);
+  // A method taken from an object (pcall(world.robot, world, 3)): its class's method table.
+  if (lua_getmetatable(L, 1) && lua_getfield(L, -1, "__index") == LUA_TTABLE) search("");
   lua_settop(L, top);
   return name;
 }

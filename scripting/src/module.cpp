@@ -47,6 +47,7 @@ int openGraspkitModule(lua_State* L) {
   openPoseFunctions(L);
   openWorldFunctions(L);
   openPluginFunctions(L);
+  openJsonFunctions(L);
   lua_pushstring(L, scriptContext(L).script.string().c_str());
   lua_setfield(L, -2, "script_path");
   lua_pushstring(L, scriptContext(L).scriptFolder.string().c_str());

@@ -1,7 +1,368 @@
+// The Robot class: DOFs, poses, links, inverse kinematics, and the hand motions (autograsp,
+// open, approach) and grasp analysis for robots that are hands.
+
+#include <fmt/format.h>
+
+#include "bound_objects.hpp"
+#include "graspkit/autograsp.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/inverse_kinematics.hpp"
+#include "lua_api.hpp"
 #include "module.hpp"
 
 namespace graspkit::lua {
+namespace {
 
-void registerRobotClass(lua_State*) {}
+const Robot& robotOf(const BoundRobot& bound) {
+  return bound.world->world.robot(bound.index);
+}
+
+int name(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  lua_pushstring(L, robotOf(robot).name().c_str());
+  return 1;
+}
+
+int type(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  lua_pushstring(L, robotOf(robot).model().type.c_str());
+  return 1;
+}
+
+int typeProvider(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  lua_pushstring(L, robotOf(robot).model().typeProvider.c_str());
+  return 1;
+}
+
+int index(lua_State* L) {
+  lua_pushinteger(L, toRobot(L, 1).index + 1);
+  return 1;
+}
+
+int isHand(lua_State* L) {
+  lua_pushboolean(L, robotOf(toRobot(L, 1)).model().isHand);
+  return 1;
+}
+
+int dofCount(lua_State* L) {
+  lua_pushinteger(L, robotOf(toRobot(L, 1)).dofCount());
+  return 1;
+}
+
+int dofs(lua_State* L) {
+  pushNumberList(L, robotOf(toRobot(L, 1)).dofValues());
+  return 1;
+}
+
+// robot:set_dofs(values [, {limits = "clamp" | "ignore" | "error"}])
+int setDofs(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  const std::vector<double> values = toNumberList(L, 2);
+  const OptionsTable options(L, 3, {"limits"});
+  const std::string limits = options.string("limits", "clamp");
+  const Robot& current = robotOf(robot);
+  if (static_cast<int>(values.size()) != current.dofCount()) {
+    throw ArgumentError(
+        L, 2,
+        fmt::format("{} DOF values expected ({} has {}), got {}", current.dofCount(),
+                    current.name(), current.dofCount(), values.size()));
+  }
+  LimitPolicy policy = LimitPolicy::Clamp;
+  if (limits == "ignore") {
+    policy = LimitPolicy::Ignore;
+  } else if (limits == "error") {
+    const auto& model_dofs = current.model().dofs;
+    for (std::size_t d = 0; d < values.size(); ++d) {
+      if (values[d] < model_dofs[d].min || values[d] > model_dofs[d].max) {
+        throw ArgumentError(L, 2,
+                            fmt::format("DOF {} value {} outside [{}, {}]", d + 1, values[d],
+                                        model_dofs[d].min, model_dofs[d].max));
+      }
+    }
+  } else if (limits != "clamp") {
+    throw ArgumentError(L, 3, "limits must be 'clamp', 'ignore' or 'error'");
+  }
+  robot.world->world.setDofValues(robot.index, values, policy);
+  return 0;
+}
+
+// {{min = ..., max = ...}, ...}: radians, mm for prismatic DOFs.
+int dofLimits(lua_State* L) {
+  const auto& model_dofs = robotOf(toRobot(L, 1)).model().dofs;
+  lua_createtable(L, static_cast<int>(model_dofs.size()), 0);
+  for (std::size_t d = 0; d < model_dofs.size(); ++d) {
+    lua_createtable(L, 0, 2);
+    lua_pushnumber(L, model_dofs[d].min);
+    lua_setfield(L, -2, "min");
+    lua_pushnumber(L, model_dofs[d].max);
+    lua_setfield(L, -2, "max");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(d + 1));
+  }
+  return 1;
+}
+
+int pose(lua_State* L) {
+  pushPose(L, robotOf(toRobot(L, 1)).pose());
+  return 1;
+}
+
+int setPose(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  robot.world->world.setRobotPose(robot.index, toPose(L, 2));
+  return 0;
+}
+
+int chainCount(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(robotOf(toRobot(L, 1)).model().chains.size()));
+  return 1;
+}
+
+// {{chain 1's link poses}, {chain 2's}, ...}: world poses, 1-based.
+int linkPoses(lua_State* L) {
+  const auto& poses = robotOf(toRobot(L, 1)).linkPoses();
+  lua_createtable(L, static_cast<int>(poses.size()), 0);
+  for (std::size_t c = 0; c < poses.size(); ++c) {
+    lua_createtable(L, static_cast<int>(poses[c].size()), 0);
+    for (std::size_t l = 0; l < poses[c].size(); ++l) {
+      pushPose(L, poses[c][l]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(l + 1));
+    }
+    lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
+  }
+  return 1;
+}
+
+int base(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  pushBody(L, robot.world, BodyRef::robotBase(robot.index));
+  return 1;
+}
+
+// robot:link(chain, link): 1-based.
+int link(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const int chain = toInteger(L, 2);
+  const int link_index = toInteger(L, 3);
+  const auto& chains = robotOf(robot).model().chains;
+  if (chain < 1 || chain > static_cast<int>(chains.size())) {
+    throw ArgumentError(
+        L, 2, fmt::format("chain {} out of range (the robot has {})", chain, chains.size()));
+  }
+  const int links = static_cast<int>(chains[chain - 1].links.size());
+  if (link_index < 1 || link_index > links) {
+    throw ArgumentError(
+        L, 3, fmt::format("link {} out of range (chain {} has {})", link_index, chain, links));
+  }
+  pushBody(L, robot.world, BodyRef::robotLink(robot.index, LinkRef{chain - 1, link_index - 1}));
+  return 1;
+}
+
+// The base, then every link chain by chain.
+int links(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const auto& chains = robotOf(robot).model().chains;
+  lua_newtable(L);
+  lua_Integer n = 0;
+  pushBody(L, robot.world, BodyRef::robotBase(robot.index));
+  lua_rawseti(L, -2, ++n);
+  for (int c = 0; c < static_cast<int>(chains.size()); ++c) {
+    for (int l = 0; l < static_cast<int>(chains[c].links.size()); ++l) {
+      pushBody(L, robot.world, BodyRef::robotLink(robot.index, LinkRef{c, l}));
+      lua_rawseti(L, -2, ++n);
+    }
+  }
+  return 1;
+}
+
+// robot:inverse_kinematics(pose [, {chain = 1}]) -> DOF values, or nil and the reason. The pose
+// is where the end of the chain (its last link's frame) should be, in the world.
+int inverseKinematics(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const Transform target = toPose(L, 2);
+  const OptionsTable options(L, 3, {"chain", "max_iterations"});
+  IkRequest request;
+  request.chain = options.integer("chain", 1) - 1;
+  request.maxIterations = options.integer("max_iterations", request.maxIterations);
+  const int chains = static_cast<int>(robotOf(robot).model().chains.size());
+  if (request.chain < 0 || request.chain >= chains) {
+    throw ArgumentError(
+        L, 3, fmt::format("chain {} out of range (the robot has {})", request.chain + 1, chains));
+  }
+  const IkResult result = graspkit::inverseKinematics(robotOf(robot), target, request);
+  if (!result.success) {
+    lua_pushnil(L);
+    lua_pushstring(L, result.failure.c_str());
+    return 2;
+  }
+  pushNumberList(L, result.dofValues);
+  return 1;
+}
+
+const char* endName(MotionEnd end) {
+  switch (end) {
+    case MotionEnd::Settled:
+      return "settled";
+    case MotionEnd::Contact:
+      return "contact";
+    case MotionEnd::IterationLimit:
+      return "iteration_limit";
+    case MotionEnd::InterpolationError:
+      return "interpolation_error";
+    case MotionEnd::NoContact:
+      return "no_contact";
+  }
+  return "?";
+}
+
+void pushContacts(lua_State* L, const WorldHandle& world, const std::vector<Contact>& contacts) {
+  lua_createtable(L, static_cast<int>(contacts.size()), 0);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    pushContact(L, world, contacts[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+// {dofs = {...}, contacts = {...}, steps = n, ended = "settled" | ...}
+void pushMotion(lua_State* L, const WorldHandle& world, const AutoGraspResult& result) {
+  lua_createtable(L, 0, 4);
+  pushNumberList(L, result.dofValues);
+  lua_setfield(L, -2, "dofs");
+  pushContacts(L, world, result.contacts);
+  lua_setfield(L, -2, "contacts");
+  lua_pushinteger(L, result.iterations);
+  lua_setfield(L, -2, "steps");
+  lua_pushstring(L, endName(result.end));
+  lua_setfield(L, -2, "ended");
+}
+
+// hand:autograsp([{speed = 1, stop_at_contact = false, max_steps = 500}])
+int autograsp(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  const OptionsTable options(L, 2, {"speed", "stop_at_contact", "max_steps"});
+  AutoGraspOptions request;
+  request.speedFactor = options.number("speed", request.speedFactor);
+  request.stopAtContact = options.boolean("stop_at_contact", request.stopAtContact);
+  request.maxIterations = options.integer("max_steps", request.maxIterations);
+  const AutoGraspResult result = autoGrasp(robot.world->world, robot.index, request);
+  pushMotion(L, robot.world, result);
+  return 1;
+}
+
+// hand:open() -> whether the hand ends free of collisions.
+int open(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  lua_pushboolean(L, openUntilFree(robot.world->world, robot.index));
+  return 1;
+}
+
+// hand:approach_to_contact([{max_distance = 500, step = 10}]) -> whether it touched, and the
+// motion's record.
+int approachToContact(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  const OptionsTable options(L, 2, {"max_distance", "step"});
+  ApproachOptions request;
+  request.maxDistance = options.number("max_distance", request.maxDistance);
+  request.step = options.number("step", request.step);
+  if (request.maxDistance < 0 || request.step <= 0) {
+    throw ArgumentError(L, 2, "max_distance must be >= 0 and step > 0");
+  }
+  const AutoGraspResult result =
+      graspkit::approachToContact(robot.world->world, robot.index, request);
+  lua_pushboolean(L, result.end == MotionEnd::Contact);
+  pushMotion(L, robot.world, result);
+  return 2;
+}
+
+// hand:contacts([object]): the hand's contacts, seen from its links.
+int contacts(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  std::optional<BodyRef> object;
+  if (!isNone(L, 2)) object = toBodyOf(L, 2, *robot.world);
+  const std::vector<Contact> found =
+      robotContacts(robot.world->world, robot.index, object ? &*object : nullptr);
+  pushContacts(L, robot.world, found);
+  return 1;
+}
+
+WrenchSpaceType wrenchSpaceType(lua_State* L, int arg, const std::string& name) {
+  if (name == "L1") return WrenchSpaceType::L1;
+  if (name == "Linf" || name == "LInfinity") return WrenchSpaceType::LInfinity;
+  throw ArgumentError(L, arg, fmt::format("gws '{}' is not 'L1' or 'Linf'", name));
+}
+
+// hand:grasp(object [, {gws = "L1" | "Linf"}]) -> Grasp of the hand's current contacts.
+int grasp(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const BodyRef object = toBodyOf(L, 2, *robot.world);
+  const OptionsTable options(L, 3, {"gws"});
+  GraspRequest request;
+  request.wrenchSpace.type = wrenchSpaceType(L, 3, options.string("gws", "L1"));
+  Grasp result = analyzeGrasp(robot.world->world, robot.index, object, request);
+  pushGrasp(L, robot.world, std::move(result));
+  return 1;
+}
+
+int world(lua_State* L) {
+  pushWorld(L, toRobot(L, 1).world);
+  return 1;
+}
+
+int robotToString(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const Robot& r = robotOf(robot);
+  const std::string text = fmt::format("Robot({} #{}, {}, {} DOFs)", r.name(), robot.index + 1,
+                                       r.model().type, r.dofCount());
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+int robotEquals(lua_State* L) {
+  const auto* a = static_cast<BoundRobot*>(luaL_testudata(L, 1, kRobotClass));
+  const auto* b = static_cast<BoundRobot*>(luaL_testudata(L, 2, kRobotClass));
+  lua_pushboolean(L, a != nullptr && b != nullptr && a->world == b->world && a->index == b->index);
+  return 1;
+}
+
+}  // namespace
+
+void pushRobot(lua_State* L, const WorldHandle& world, int index) {
+  newObject<BoundRobot>(L, kRobotClass, BoundRobot{world, index});
+}
+
+BoundRobot& toRobot(lua_State* L, int arg) {
+  return toObject<BoundRobot>(L, arg, kRobotClass, "Robot");
+}
+
+void registerRobotClass(lua_State* L) {
+  const luaL_Reg methods[] = {
+      {"name", guarded<name>},
+      {"type", guarded<type>},
+      {"type_provider", guarded<typeProvider>},
+      {"index", guarded<index>},
+      {"is_hand", guarded<isHand>},
+      {"dof_count", guarded<dofCount>},
+      {"dofs", guarded<dofs>},
+      {"set_dofs", guarded<setDofs>},
+      {"dof_limits", guarded<dofLimits>},
+      {"pose", guarded<pose>},
+      {"set_pose", guarded<setPose>},
+      {"chain_count", guarded<chainCount>},
+      {"link_poses", guarded<linkPoses>},
+      {"base", guarded<base>},
+      {"link", guarded<link>},
+      {"links", guarded<links>},
+      {"inverse_kinematics", guarded<inverseKinematics>},
+      {"autograsp", guarded<autograsp>},
+      {"open", guarded<open>},
+      {"approach_to_contact", guarded<approachToContact>},
+      {"contacts", guarded<contacts>},
+      {"grasp", guarded<grasp>},
+      {"world", guarded<world>},
+      {nullptr, nullptr},
+  };
+  defineClass(L, kRobotClass, methods, destroyObject<BoundRobot>, guarded<robotToString>,
+              robotEquals);
+}
 
 }  // namespace graspkit::lua

@@ -1,7 +1,301 @@
+// graspkit.load_world, graspkit.new_world and the World class: building worlds, looking things
+// up, saving, and the world-wide queries (contacts, collision, distance, rays).
+
+#include <fmt/format.h>
+
+#include "bound_objects.hpp"
+#include "graspkit/collision.hpp"
+#include "graspkit/contact_search.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "lua_api.hpp"
 #include "module.hpp"
+#include "script_context.hpp"
 
 namespace graspkit::lua {
+namespace {
 
-void openWorldFunctions(lua_State*) {}
+WorldHandle& toWorldHandle(lua_State* L, int arg) {
+  return toObject<WorldHandle>(L, arg, kWorldClass, "World");
+}
+
+int loadWorld(lua_State* L) {
+  ScriptContext& context = scriptContext(L);
+  const std::filesystem::path file = context.inputPath(toString(L, 1));
+  auto handle = std::make_shared<ScriptWorld>();
+  handle->world = loadAnyFile(file, context.options.load, &context.cache);
+  handle->file = file;
+  pushWorld(L, std::move(handle));
+  return 1;
+}
+
+int newWorld(lua_State* L) {
+  pushWorld(L, std::make_shared<ScriptWorld>());
+  return 1;
+}
+
+int addBody(lua_State* L, BodyKind kind) {
+  ScriptWorld& world = *toWorldHandle(L, 1);
+  ScriptContext& context = scriptContext(L);
+  const std::filesystem::path file = context.inputPath(toString(L, 2));
+  const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
+  Body body;
+  body.model = loadBodyFile(file, &context.cache);
+  body.kind = kind;
+  body.setPose(pose);
+  const int index = world.world.addBody(std::move(body));
+  pushBody(L, toWorldHandle(L, 1), BodyRef::body(index));
+  return 1;
+}
+
+int addObstacle(lua_State* L) {
+  return addBody(L, BodyKind::Obstacle);
+}
+
+int addObject(lua_State* L) {
+  return addBody(L, BodyKind::Graspable);
+}
+
+int addRobot(lua_State* L) {
+  ScriptWorld& world = *toWorldHandle(L, 1);
+  ScriptContext& context = scriptContext(L);
+  const std::filesystem::path file = context.inputPath(toString(L, 2));
+  const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
+  const int index =
+      world.world.addRobot(Robot(loadRobotFile(file, context.options.load, &context.cache)));
+  world.world.setRobotPose(index, pose);
+  pushRobot(L, toWorldHandle(L, 1), index);
+  return 1;
+}
+
+int save(lua_State* L) {
+  ScriptWorld& world = *toWorldHandle(L, 1);
+  const std::filesystem::path file = scriptContext(L).outputPath(toString(L, 2));
+  saveWorldFile(world.world, file, SaveOptions{.root = file.parent_path()});
+  world.file = file;
+  return 0;
+}
+
+int clone(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  auto copy = std::make_shared<ScriptWorld>();
+  copy->world = world.world.clone();
+  copy->file = world.file;
+  pushWorld(L, std::move(copy));
+  return 1;
+}
+
+int file(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  if (world.file.empty()) return 0;
+  lua_pushstring(L, world.file.c_str());
+  return 1;
+}
+
+int bodies(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const int count = static_cast<int>(handle->world.bodies().size());
+  lua_createtable(L, count, 0);
+  for (int i = 0; i < count; ++i) {
+    pushBody(L, handle, BodyRef::body(i));
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+
+int body(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  toString(L, 2);  // a name, not a Body
+  pushBody(L, handle, toBodyOf(L, 2, *handle));
+  return 1;
+}
+
+int robots(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const int count = handle->world.robotCount();
+  lua_createtable(L, count, 0);
+  for (int i = 0; i < count; ++i) {
+    pushRobot(L, handle, i);
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+
+int robot(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const World& world = handle->world;
+  if (lua_type(L, 2) == LUA_TSTRING) {
+    const std::string name = toString(L, 2);
+    const std::optional<int> index = world.findRobot(name);
+    if (!index) {
+      std::string known;
+      for (int i = 0; i < world.robotCount(); ++i) {
+        known += (known.empty() ? "" : ", ") + world.robot(i).name();
+      }
+      throw ArgumentError(L, 2,
+                          fmt::format("no robot '{}' in the world (robots: {})", name,
+                                      known.empty() ? "none" : known));
+    }
+    pushRobot(L, handle, *index);
+    return 1;
+  }
+  const int index = toInteger(L, 2);
+  if (index < 1 || index > world.robotCount()) {
+    throw ArgumentError(
+        L, 2,
+        fmt::format("robot index {} out of range (the world has {})", index, world.robotCount()));
+  }
+  pushRobot(L, handle, index - 1);
+  return 1;
+}
+
+// Every pair collision detection looks at, touching within the contact threshold.
+int contacts(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const World& world = handle->world;
+  const std::vector<BodyRef> all = worldBodies(world);
+  std::vector<Contact> found;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      if (!world.collisionFilter().isActive(world, all[i], all[j])) continue;
+      ContactResult result = findContacts(world, all[i], all[j]);
+      found.insert(found.end(), result.contacts.begin(), result.contacts.end());
+    }
+  }
+  lua_createtable(L, static_cast<int>(found.size()), 0);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    pushContact(L, handle, found[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+// world:collides()      any pair collision detection looks at intersects;
+// world:collides(a)     any such pair with body a;
+// world:collides(a, b)  the surfaces of a and b intersect (whatever the collision filter says).
+int collides(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  bool result = false;
+  if (isNone(L, 2)) {
+    result = anyCollision(world.world, {});
+  } else if (isNone(L, 3)) {
+    const BodyRef a = toBodyOf(L, 2, world);
+    result = anyCollision(world.world, std::span<const BodyRef>(&a, 1));
+  } else {
+    result = collide(world.world, toBodyOf(L, 2, world), toBodyOf(L, 3, world));
+  }
+  lua_pushboolean(L, result);
+  return 1;
+}
+
+int collisions(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const std::vector<CollidingPair> pairs = collisionReport(handle->world);
+  lua_createtable(L, static_cast<int>(pairs.size()), 0);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    lua_createtable(L, 2, 0);
+    pushBody(L, handle, pairs[i].first);
+    lua_rawseti(L, -2, 1);
+    pushBody(L, handle, pairs[i].second);
+    lua_rawseti(L, -2, 2);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+// world:distance(a, b) -> distance (mm), closest point on a, closest point on b.
+int distance(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  const DistanceResult result =
+      graspkit::distance(world.world, toBodyOf(L, 2, world), toBodyOf(L, 3, world));
+  lua_pushnumber(L, result.distance);
+  pushVector3(L, result.pointOnA);
+  pushVector3(L, result.pointOnB);
+  return 3;
+}
+
+const RayScene& rayScene(ScriptWorld& world) {
+  const std::size_t count = worldBodies(world.world).size();
+  if (!world.rays || world.raySceneBodyCount != count) {
+    world.rays = std::make_unique<RayScene>(world.world);
+    world.raySceneBodyCount = count;
+  } else {
+    world.rays->update(world.world);
+  }
+  return *world.rays;
+}
+
+// world:raycast(origin, direction [, {max_distance = mm}]) -> {body, point, normal, distance}
+// or nil when the ray meets nothing.
+int raycast(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  Ray ray;
+  ray.origin = toVector3(L, 2);
+  ray.direction = toVector3(L, 3);
+  if (ray.direction.norm() == 0.0) throw ArgumentError(L, 3, "the direction is zero");
+  const OptionsTable options(L, 4, {"max_distance"});
+  ray.tmax = options.number("max_distance", ray.tmax);
+  const std::optional<RayHit> hit = rayScene(*handle).intersect(ray);
+  if (!hit) return 0;
+  lua_createtable(L, 0, 4);
+  pushBody(L, handle, hit->body);
+  lua_setfield(L, -2, "body");
+  pushVector3(L, hit->point);
+  lua_setfield(L, -2, "point");
+  pushVector3(L, hit->normal);
+  lua_setfield(L, -2, "normal");
+  lua_pushnumber(L, hit->distance);
+  lua_setfield(L, -2, "distance");
+  return 1;
+}
+
+int worldToString(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  const std::string text = fmt::format(
+      "World({} bodies, {} robots{}{})", world.world.bodies().size(), world.world.robotCount(),
+      world.file.empty() ? "" : ", ", world.file.filename().string());
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+}  // namespace
+
+void pushWorld(lua_State* L, WorldHandle world) {
+  newObject<WorldHandle>(L, kWorldClass, std::move(world));
+}
+
+ScriptWorld& toWorld(lua_State* L, int arg) {
+  return *toWorldHandle(L, arg);
+}
+
+void openWorldFunctions(lua_State* L) {
+  const luaL_Reg methods[] = {
+      {"add_obstacle", guarded<addObstacle>},
+      {"add_object", guarded<addObject>},
+      {"add_robot", guarded<addRobot>},
+      {"save", guarded<save>},
+      {"clone", guarded<clone>},
+      {"file", guarded<file>},
+      {"bodies", guarded<bodies>},
+      {"body", guarded<body>},
+      {"robots", guarded<robots>},
+      {"robot", guarded<robot>},
+      {"contacts", guarded<contacts>},
+      {"collides", guarded<collides>},
+      {"collisions", guarded<collisions>},
+      {"distance", guarded<distance>},
+      {"raycast", guarded<raycast>},
+      {nullptr, nullptr},
+  };
+  defineClass(L, kWorldClass, methods, destroyObject<WorldHandle>, guarded<worldToString>);
+  const luaL_Reg functions[] = {
+      {"load_world", guarded<loadWorld>},
+      {"new_world", guarded<newWorld>},
+      {nullptr, nullptr},
+  };
+  luaL_setfuncs(L, functions, 0);
+}
 
 }  // namespace graspkit::lua
