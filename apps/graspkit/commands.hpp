@@ -53,6 +53,7 @@ int runPlugins(const PluginsOptions& options, std::ostream& out);
 struct RunOptions {
   std::filesystem::path script;
   std::vector<std::string> args;
+  bool json = false;  // print the script's return value as JSON
   ScriptFlags flags;
 };
 

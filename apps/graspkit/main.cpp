@@ -13,6 +13,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"graspkit: a grasp simulator that reads GraspIt! files"};
   app.require_subcommand(1);
+  app.fallthrough();  // --quiet and --verbose also after the subcommand
   bool quiet = false;
   bool verbose = false;
   app.add_flag("-q,--quiet", quiet, "Print errors only");

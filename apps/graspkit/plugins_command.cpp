@@ -78,7 +78,8 @@ int runPlugins(const PluginsOptions& options, std::ostream& out) {
 
 void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
                   bool& generic_robots) {
-  command.add_option("--root", roots, "Folder that world <filename> paths are relative to");
+  command.add_option("--root", roots, "Folder that world <filename> paths are relative to")
+      ->allow_extra_args(false);
   command.add_flag("--generic-robots", generic_robots,
                    "Load a robot whose type no plugin provides as a generic Hand (with a warning)");
 }

@@ -16,6 +16,7 @@ void addRunCommand(CLI::App& app, RunOptions& options) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("args", options.args, "Arguments for the script, after --");
+  cmd->add_flag("--json", options.json, "Print the value the script returns as JSON");
   addScriptFlags(*cmd, options.flags);
 }
 
@@ -24,9 +25,12 @@ int runRun(const RunOptions& options, bool quiet) {
   script_options.args = options.args;
   lua::ScriptHost host(options.script, std::move(script_options));
   std::cout.flush();
-  const lua::ScriptOutcome outcome = host.run();
+  const lua::ScriptOutcome outcome = host.run(options.json ? 1 : 0);
   std::fflush(stdout);  // Lua's print writes through C stdio
-  if (outcome.ok) return 0;
+  if (outcome.ok) {
+    if (options.json) std::cout << host.toJson(-1) << "\n";
+    return 0;
+  }
   if (!outcome.message.empty() && outcome.exitStatus != 0 &&
       !outcome.message.starts_with("os.exit")) {
     std::cerr << "graspkit: error: " << outcome.message << "\n";

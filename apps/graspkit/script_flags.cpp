@@ -7,12 +7,16 @@
 namespace graspkit::cli {
 
 void addScriptFlags(CLI::App& command, ScriptFlags& flags) {
-  command.add_option("--allow-read", flags.allowRead, "Folder the script may also read below")
-      ->check(CLI::ExistingDirectory);
+  command
+      .add_option("--allow-read", flags.allowRead,
+                  "Folder the script may also read below (repeatable)")
+      ->check(CLI::ExistingDirectory)
+      ->allow_extra_args(false);  // one folder per flag, so the script is not taken for one
   command
       .add_option("--allow-write", flags.allowWrite,
-                  "Folder the script may also write (and read) below")
-      ->check(CLI::ExistingDirectory);
+                  "Folder the script may also write (and read) below (repeatable)")
+      ->check(CLI::ExistingDirectory)
+      ->allow_extra_args(false);
   command.add_flag("--unsafe", flags.unsafe,
                    "No sandbox: full io and os libraries, C modules, any file");
   command.add_option("--timeout", flags.timeout, "Stop a script after this many seconds")

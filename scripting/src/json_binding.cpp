@@ -7,13 +7,15 @@
 #include <nlohmann/json.hpp>
 
 #include "graspkit/error.hpp"
+#include "json_value.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 
 namespace graspkit::lua {
-namespace {
 
 using nlohmann::json;
+
+namespace {
 
 constexpr int kMaxDepth = 64;  // deeper is a cycle or a mistake
 
@@ -156,6 +158,10 @@ int decode(lua_State* L) {
 }
 
 }  // namespace
+
+json luaToJson(lua_State* L, int index) {
+  return toJson(L, index, 0, "value");
+}
 
 void openJsonFunctions(lua_State* L) {
   const luaL_Reg functions[] = {

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "graspkit/error.hpp"
+#include "json_value.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 #include "script_context.hpp"
@@ -209,14 +210,18 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   return outcome;
 }
 
-ScriptOutcome ScriptHost::run() {
+ScriptOutcome ScriptHost::run(int nresults) {
   const std::string name = context_->script.string();
   if (luaL_loadfilex(L_, name.c_str(), "t") != LUA_OK) {
     ScriptOutcome outcome{false, 1, false, lua_tostring(L_, -1)};
     lua_pop(L_, 1);
     return outcome;
   }
-  return protectedCall(0, 0);
+  return protectedCall(0, nresults);
+}
+
+std::string ScriptHost::toJson(int index, int indent) {
+  return luaToJson(L_, index).dump(indent);
 }
 
 ScriptOutcome ScriptHost::runString(const std::string& source, const std::string& chunk_name) {

@@ -43,8 +43,13 @@ class ScriptHost {
   ScriptHost(const ScriptHost&) = delete;
   ScriptHost& operator=(const ScriptHost&) = delete;
 
-  // Loads the script and runs it to its end.
-  ScriptOutcome run();
+  // Loads the script and runs it to its end. With nresults > 0, that many of the values the
+  // script returns are left on the stack (nil for missing ones) when ok.
+  ScriptOutcome run(int nresults = 0);
+
+  // The Lua value at `index` as JSON text (graspkit.json_encode's rules). Throws graspkit::Error
+  // for values JSON cannot hold.
+  std::string toJson(int index, int indent = 2);
 
   // Calls the function below its `nargs` arguments on top of the stack, with a traceback on error
   // and the time limit counted from now. Results are left on the stack when ok.
