@@ -51,6 +51,13 @@ std::string argumentMessage(lua_State* L, int arg, const std::string& message) {
   return fmt::format("bad argument #{} to '{}' ({})", arg, called, message);
 }
 
+// t[key] without metamethods: an __index that raises would longjmp over the reader's C++ frames.
+int rawField(lua_State* L, int table, const char* key) {
+  table = lua_absindex(L, table);
+  lua_pushstring(L, key);
+  return lua_rawget(L, table);
+}
+
 double toFiniteNumber(lua_State* L, int arg, const char* what) {
   if (lua_type(L, arg) != LUA_TNUMBER) {
     throw ArgumentError(L, arg, fmt::format("{} expected, got {}", what, luaL_typename(L, arg)));
@@ -176,11 +183,11 @@ Transform toPose(lua_State* L, int arg) {
       throw ArgumentError(L, arg, "a pose has only the keys 'translation' and 'quaternion'");
     }
   }
-  if (lua_getfield(L, arg, "translation") != LUA_TNIL) {
+  if (rawField(L, arg, "translation") != LUA_TNIL) {
     translation = toFixedList<3>(L, lua_gettop(L), "translation {x, y, z}");
   }
   lua_pop(L, 1);
-  if (lua_getfield(L, arg, "quaternion") != LUA_TNIL) {
+  if (rawField(L, arg, "quaternion") != LUA_TNIL) {
     const Eigen::Vector4d q = toFixedList<4>(L, lua_gettop(L), "quaternion {w, x, y, z}");
     if (q.norm() < 1e-9) {
       lua_pop(L, 1);
@@ -216,7 +223,7 @@ int OptionsTable::pushField(const char* key) const {
     lua_pushnil(L_);
     return LUA_TNIL;
   }
-  return lua_getfield(L_, arg_, key);
+  return rawField(L_, arg_, key);
 }
 
 bool OptionsTable::has(const char* key) const {
