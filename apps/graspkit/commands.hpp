@@ -62,6 +62,18 @@ void addRunCommand(CLI::App& app, RunOptions& options);
 // after --timeout.
 int runRun(const RunOptions& options, bool quiet);
 
+struct TestOptions {
+  std::vector<std::filesystem::path> paths;  // test files and folders
+  std::filesystem::path junit;               // --junit FILE; none when empty
+  bool json = false;
+  ScriptFlags flags;
+};
+
+void addTestCommand(CLI::App& app, TestOptions& options);
+// Prints a line per test and "N passed, N failed[, N skipped]" (or one JSON object). Exit
+// status 0 when no test failed, 1 when one did or no test was found.
+int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& out);
+
 // The options every command that loads files shares: --root and --generic-robots.
 void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
                   bool& generic_robots);

@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   graspkit::cli::addPluginsCommand(app, plugins);
   graspkit::cli::RunOptions run;
   graspkit::cli::addRunCommand(app, run);
+  graspkit::cli::TestOptions test;
+  graspkit::cli::addTestCommand(app, test);
 
   try {
     app.parse(argc, argv);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("grasp")) return graspkit::cli::runGrasp(grasp, std::cout);
     if (app.got_subcommand("plugins")) return graspkit::cli::runPlugins(plugins, std::cout);
     if (app.got_subcommand("run")) return graspkit::cli::runRun(run, quiet);
+    if (app.got_subcommand("test")) return graspkit::cli::runTest(test, quiet, verbose, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
