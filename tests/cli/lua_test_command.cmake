@@ -63,11 +63,11 @@ expect_output("PASS  near_failure.lua: holds ("
 expect_closing_line("1 passed, 1 failed")
 
 # An error inside a test fails it with the message and a traceback; the next test still runs.
-graspkit_test(test error_in_test.lua)
+graspkit_test(test error_inside.lua)
 expect_status(1)
-expect_output("FAIL  error_in_test.lua: raises ("
-              "    error_in_test.lua:3: attempt to index a nil value (local 't')\n    stack traceback:\n"
-              "PASS  error_in_test.lua: runs after an error (")
+expect_output("FAIL  error_inside.lua: raises ("
+              "    error_inside.lua:3: attempt to index a nil value (local 't')\n    stack traceback:\n"
+              "PASS  error_inside.lua: runs after an error (")
 expect_closing_line("1 passed, 1 failed")
 
 # A file that does not load is one failed test named after the file.
@@ -202,7 +202,7 @@ endif()
 # Five files at once: the closing line, the JSON report and the JUnit XML agree with the counts
 # above: 6 + 2 + 2 + 1 + 3 = 14 tests; passed 6 + 1 + 1 + 0 + 1 = 9; failed 0 + 1 + 1 + 1 + 1 = 4;
 # skipped 1.
-set(five passing.lua near_failure.lua error_in_test.lua syntax_error.lua skipping.lua)
+set(five passing.lua near_failure.lua error_inside.lua syntax_error.lua skipping.lua)
 set(junit ${WORK_DIR}/lua_test_report.xml)
 file(REMOVE ${junit})
 graspkit_test(test --junit ${junit} ${five})

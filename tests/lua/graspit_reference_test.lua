@@ -29,7 +29,13 @@ test("link poses match GraspIt!'s forward kinematics", function()
     local world = graspkit.new_world()
     local hand = world:add_robot(shared .. "/graspit-data/" .. file)
     for name, config in pairs(robot.configs) do
-      hand:set_dofs(config.requested_dof_values, {limits = "ignore"})
+      -- Configurations without requested values are the robot as loaded: its recorded DOFs.
+      hand:set_dofs(config.requested_dof_values or config.state.dof_values, {limits = "ignore"})
+      expect_near(hand:dofs(), config.state.dof_values, 1e-9, file .. " " .. name .. " dofs")
+      for d, dof in ipairs(config.state.dofs) do
+        expect_near(hand:dof_limits()[d].min, dof.min, 1e-9, file .. " dof " .. d .. " min")
+        expect_near(hand:dof_limits()[d].max, dof.max, 1e-9, file .. " dof " .. d .. " max")
+      end
       local poses = hand:link_poses()
       expect_equal(#poses, #config.state.chains, file .. " chains")
       for c, chain in ipairs(config.state.chains) do
