@@ -88,7 +88,9 @@ function sweep.print_table(records)
     local star = r.failure and " *" or ""
     print(string.format("%9.1f %9d %10.4f %10.4f %14s%s", math.deg(r.angle), r.contacts,
                         r.epsilon, r.volume, r.force_closure and "yes" or "no", star))
-    if r.failure then notes[#notes + 1] = string.format("* %.1f: %s", math.deg(r.angle), r.failure) end
+    if r.failure then
+      notes[#notes + 1] = string.format("* %.1f: %s", math.deg(r.angle), r.failure)
+    end
   end
   for _, note in ipairs(notes) do print(note) end
 end

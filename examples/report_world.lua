@@ -29,9 +29,9 @@ end
 
 print("\nrobots:")
 for _, robot in ipairs(world:robots()) do
+  local what = robot:is_hand() and "a hand" or "not a hand"
   print(string.format("  %d. %s: type %s (%s), %s, %d chains", robot:index(), robot:name(),
-                      robot:type(), robot:type_provider(), robot:is_hand() and "a hand" or "not a hand",
-                      robot:chain_count()))
+                      robot:type(), robot:type_provider(), what, robot:chain_count()))
   print("     pose " .. pose_text(robot:pose()))
   local values, limits = robot:dofs(), robot:dof_limits()
   for d = 1, robot:dof_count() do

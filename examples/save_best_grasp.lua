@@ -7,7 +7,8 @@
 -- Run from the repository root; the script may only write below a folder given with
 -- --allow-write:
 --   mkdir -p out
---   graspkit run examples/save_best_grasp.lua --root models --allow-write out -- out/best.xml [ANGLES]
+--   graspkit run examples/save_best_grasp.lua --root models --allow-write out \
+--       -- out/best.xml [ANGLES]
 -- ANGLES is the number of directions tried (default 12).
 
 local sweep = require("grasp_sweep")
@@ -53,8 +54,8 @@ for i, value in ipairs(hand:dofs()) do
 end
 local grasp = again:grasp("mug")
 if grasp:contact_count() ~= best.contacts or math.abs(grasp:epsilon() - best.epsilon) > 1e-9 then
-  error(string.format("the reloaded grasp differs: %d contacts, epsilon %.6f", grasp:contact_count(),
-                      grasp:epsilon()))
+  error(string.format("the reloaded grasp differs: %d contacts, epsilon %.6f",
+                      grasp:contact_count(), grasp:epsilon()))
 end
 print(string.format("reloaded %s: pose within %.2g mm and %.2g rad, same DOFs, %d contacts, " ..
                     "epsilon %.4f", output, moved, turned, grasp:contact_count(), grasp:epsilon()))
