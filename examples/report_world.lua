@@ -10,6 +10,7 @@
 
 local world_file = arg[1] or graspkit.script_folder .. "/../models/worlds/default.xml"
 local world = graspkit.load_world(world_file)
+local shown_name = arg[1] or "models/worlds/default.xml"
 
 -- A pose as "(x, y, z) mm, q = (w, x, y, z)", the quaternion w first as graspkit writes it.
 local function pose_text(pose)
@@ -18,7 +19,7 @@ local function pose_text(pose)
                        q[1], q[2], q[3], q[4])
 end
 
-print(string.format("%s: %d bodies, %d robots", world_file, #world:bodies(), #world:robots()))
+print(string.format("%s: %d bodies, %d robots", shown_name, #world:bodies(), #world:robots()))
 
 print("\nbodies:")
 for i, body in ipairs(world:bodies()) do

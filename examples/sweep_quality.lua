@@ -16,8 +16,8 @@ if count == nil or count < 1 then error("ANGLES must be a whole number >= 1, got
 local world_file = arg[2] or graspkit.script_folder .. "/../models/worlds/default.xml"
 
 local world = graspkit.load_world(world_file)
-print(string.format("%s: %s approaching the mug from %d directions", world:file(),
-                    world:robot(1):name(), count))
+print(string.format("%s: %s approaching the mug from %d directions",
+                    arg[2] or "models/worlds/default.xml", world:robot(1):name(), count))
 
 local records = sweep.run(world, {count = count})
 sweep.print_table(records)
