@@ -145,8 +145,9 @@ BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world) {
     std::string known;
     for (const Body& body : world.world.bodies()) known += (known.empty() ? "" : ", ") + body.name;
     throw ArgumentError(L, arg,
-                        fmt::format("no body or link '{}' in the world (bodies: {})", wanted,
-                                    known.empty() ? "none" : known));
+                        fmt::format("no body or link '{}' in the world (bodies: {}; links are "
+                                    "named <robot>_palm and <robot>_chain<c>_link<l>, from 0)",
+                                    wanted, known.empty() ? "none" : known));
   }
   const BoundBody& body = toObject<BoundBody>(L, arg, kBodyClass, "Body or body name");
   if (body.world.get() != &world) {

@@ -67,8 +67,11 @@ int robot(lua_State* L) {
 // Why the wrench space could not be built (no contacts, a flat wrench set, ...), or nil.
 int failure(lua_State* L) {
   const GraspWrenchSpace& gws = toGrasp(L, 1).grasp.wrenchSpace;
-  if (gws.built) return 0;
-  lua_pushstring(L, gws.failure.c_str());
+  if (gws.built) {
+    lua_pushnil(L);
+  } else {
+    lua_pushstring(L, gws.failure.c_str());
+  }
   return 1;
 }
 

@@ -152,8 +152,7 @@ int decode(lua_State* L) {
   } catch (const json::parse_error& e) {
     throw Error(fmt::format("json_decode: {}", e.what()));
   }
-  if (value.is_null()) return 0;
-  pushJson(L, value, 0);
+  pushJson(L, value, 0);  // null becomes nil
   return 1;
 }
 

@@ -59,11 +59,12 @@ bool inFolder(const fs::path& file, const fs::path& folder) {
 
 // Loading a plugin runs its native code, which no sandbox can contain: a sandboxed script may
 // load only plugins that sit in a folder of the plugin search path (the ones the user or the
-// installation already trusts). --unsafe loads any.
+// installation already trusts; no --allow-read is needed for them). --unsafe loads any file.
 int loadPlugin(lua_State* L) {
   const ScriptContext& context = scriptContext(L);
-  const fs::path file = context.inputPath(toString(L, 1));
+  const std::string name = toString(L, 1);
   PluginLoader& loader = Registry::global().plugins();
+  fs::path file = fs::absolute(fs::path(name));
   if (context.paths.restricted()) {
     bool trusted = false;
     for (const fs::path& folder : loader.searchPath()) trusted = trusted || inFolder(file, folder);
@@ -73,6 +74,8 @@ int loadPlugin(lua_State* L) {
                               "path ({}); use GRASPKIT_PLUGIN_PATH or --unsafe",
                               loader.describeSearchPath()));
     }
+  } else {
+    file = context.inputPath(name);
   }
   pushPluginInfo(L, loader.load(file));
   return 1;

@@ -89,8 +89,11 @@ int clone(lua_State* L) {
 
 int file(lua_State* L) {
   const ScriptWorld& world = *toWorldHandle(L, 1);
-  if (world.file.empty()) return 0;
-  lua_pushstring(L, world.file.c_str());
+  if (world.file.empty()) {
+    lua_pushnil(L);
+  } else {
+    lua_pushstring(L, world.file.c_str());
+  }
   return 1;
 }
 
@@ -238,7 +241,10 @@ int raycast(lua_State* L) {
   const OptionsTable options(L, 4, {"max_distance"});
   ray.tmax = options.number("max_distance", ray.tmax);
   const std::optional<RayHit> hit = rayScene(*handle).intersect(ray);
-  if (!hit) return 0;
+  if (!hit) {
+    lua_pushnil(L);
+    return 1;
+  }
   lua_createtable(L, 0, 4);
   pushBody(L, handle, hit->body);
   lua_setfield(L, -2, "body");
@@ -253,9 +259,10 @@ int raycast(lua_State* L) {
 
 int worldToString(lua_State* L) {
   const ScriptWorld& world = *toWorldHandle(L, 1);
-  const std::string text = fmt::format(
-      "World({} bodies, {} robots{}{})", world.world.bodies().size(), world.world.robotCount(),
-      world.file.empty() ? "" : ", ", world.file.filename().string());
+  const std::string text =
+      fmt::format("World({} bodies, {} robot{}{}{})", world.world.bodies().size(),
+                  world.world.robotCount(), world.world.robotCount() == 1 ? "" : "s",
+                  world.file.empty() ? "" : ", ", world.file.filename().string());
   lua_pushlstring(L, text.data(), text.size());
   return 1;
 }
