@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <optional>
@@ -73,12 +74,18 @@ bool isBelowAny(const fs::path& file, const std::vector<fs::path>& folders) {
   return false;
 }
 
+void addFolder(std::vector<fs::path>& folders, const fs::path& folder) {
+  if (std::find(folders.begin(), folders.end(), folder) == folders.end()) {
+    folders.push_back(folder);
+  }
+}
+
 std::vector<fs::path> resolvedFolders(const std::vector<fs::path>& folders) {
   std::vector<fs::path> result;
   for (const fs::path& folder : folders) {
     // An empty path would resolve to nothing and then contain everything.
     if (folder.empty()) continue;
-    if (fs::path path = resolved(folder); !path.empty()) result.push_back(std::move(path));
+    if (fs::path path = resolved(folder); !path.empty()) addFolder(result, path);
   }
   return result;
 }
@@ -94,8 +101,8 @@ std::string resolvesTo(const fs::path& file) {
   std::error_code ec;
   const fs::path plain = fs::absolute(file, ec).lexically_normal();
   const fs::path real = resolved(file);
-  if (real.empty()) return " (a loop of symbolic links)";
-  return real == plain ? "" : fmt::format(" (it leads to {})", real.string());
+  if (real.empty()) return "; the path is a loop of symbolic links";
+  return real == plain ? "" : fmt::format("; the path leads to {}", real.string());
 }
 
 }  // namespace
@@ -104,7 +111,7 @@ PathPolicy::PathPolicy(std::vector<fs::path> readable, std::vector<fs::path> wri
     : restricted_(true),
       readable_(resolvedFolders(readable)),
       writable_(resolvedFolders(writable)) {
-  readable_.insert(readable_.end(), writable_.begin(), writable_.end());
+  for (const fs::path& folder : writable_) addFolder(readable_, folder);
 }
 
 bool PathPolicy::mayRead(const fs::path& file) const {
@@ -118,16 +125,16 @@ bool PathPolicy::mayWrite(const fs::path& file) const {
 void PathPolicy::checkRead(const fs::path& file) const {
   if (mayRead(file)) return;
   throw Error(SourceLocation{file.string()},
-              fmt::format("sandbox: reading is not allowed outside {}{} (use --allow-read DIR or "
-                          "--unsafe)",
+              fmt::format("sandbox: reading is not allowed outside {} (use --allow-read DIR or "
+                          "--unsafe){}",
                           listFolders(readable_), resolvesTo(file)));
 }
 
 void PathPolicy::checkWrite(const fs::path& file) const {
   if (mayWrite(file)) return;
   throw Error(SourceLocation{file.string()},
-              fmt::format("sandbox: writing is not allowed outside {}{} (use --allow-write DIR or "
-                          "--unsafe)",
+              fmt::format("sandbox: writing is not allowed outside {} (use --allow-write DIR or "
+                          "--unsafe){}",
                           listFolders(writable_), resolvesTo(file)));
 }
 
@@ -193,12 +200,23 @@ void forceTextMode(lua_State* L, int mode_arg) {
   lua_replace(L, mode_arg);
 }
 
+// io.open's mode: r, w or a, then an optional +, then any number of b (what C's fopen accepts
+// portably, as Lua checks it).
+bool isOpenMode(const char* mode) {
+  if (*mode == '\0' || std::strchr("rwa", *mode) == nullptr) return false;
+  ++mode;
+  if (*mode == '+') ++mode;
+  return std::strspn(mode, "b") == std::strlen(mode);
+}
+
+// The standard function, called from here, would name itself '?' in its argument errors; so
+// the arguments of the functions below are checked here first.
 int sandboxedOpen(lua_State* L) {
-  if (const char* file = fileArgument(L, 1)) {
-    const char* mode = luaL_optstring(L, 2, "r");
-    const Access access = std::strpbrk(mode, "wa+") != nullptr ? Access::write : Access::read;
-    if (!permitted(L, "io.open", file, access)) return raiseError(L);
-  }
+  const char* file = luaL_checkstring(L, 1);
+  const char* mode = luaL_optstring(L, 2, "r");
+  luaL_argcheck(L, isOpenMode(mode), 2, "invalid mode");
+  const Access access = std::strpbrk(mode, "wa+") != nullptr ? Access::write : Access::read;
+  if (!permitted(L, "io.open", file, access)) return raiseError(L);
   return callStandard(L);
 }
 
@@ -221,17 +239,16 @@ int sandboxedOutput(lua_State* L) {
 }
 
 int sandboxedRemove(lua_State* L) {
-  const char* file = fileArgument(L, 1);
-  if (file != nullptr && !permitted(L, "os.remove", file, Access::write)) return raiseError(L);
+  const char* file = luaL_checkstring(L, 1);
+  if (!permitted(L, "os.remove", file, Access::write)) return raiseError(L);
   return callStandard(L);
 }
 
 int sandboxedRename(lua_State* L) {
-  for (int arg : {1, 2}) {
-    const char* file = fileArgument(L, arg);
-    if (file != nullptr && !permitted(L, "os.rename", file, Access::write)) {
-      return raiseError(L);
-    }
+  const char* from = luaL_checkstring(L, 1);
+  const char* to = luaL_checkstring(L, 2);
+  for (const char* file : {from, to}) {
+    if (!permitted(L, "os.rename", file, Access::write)) return raiseError(L);
   }
   return callStandard(L);
 }

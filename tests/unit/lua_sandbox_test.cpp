@@ -301,7 +301,7 @@ TEST_F(LuaSandbox, SymlinkOutOfScriptFolderIsRefused) {
   for (const auto& attack : attacks) {
     SCOPED_TRACE(attack.attack);
     expectRefused(run(attack.attack),
-                  {attack.function, "sandbox", "it leads to", outside_.string()});
+                  {attack.function, "sandbox", "the path leads to", outside_.string()});
   }
   EXPECT_FALSE(fs::exists(outside_ / "new.txt"));
   EXPECT_FALSE(fs::exists(outside_ / "created.txt"));
@@ -350,6 +350,9 @@ TEST_F(LuaSandbox, RequireCannotReachOutside) {
       fmt::format("package.path = {} .. '/?.lua' return require('secretmod')", lit(outside_));
   expectRefused(run(attack),
                 {"module 'secretmod' not found", (outside_ / "secretmod.lua").string(), "sandbox"});
+  // Through `..` in the module name and through a link in the script's folder.
+  expectRefused(run("require('../outside/secretmod')"), {"secretmod.lua", "sandbox"});
+  expectRefused(run("require('out_dir.secretmod')"), {"out_dir/secretmod.lua", "sandbox"});
   // package.searchpath does not probe outside either.
   expectOk(
       run(fmt::format("local found, tried = package.searchpath('secretmod', {} .. '/?.lua') "
@@ -357,6 +360,17 @@ TEST_F(LuaSandbox, RequireCannotReachOutside) {
                       lit(outside_))));
   expectOk(run("assert(package.searchpath('helper', package.path))"));
   expectOk(run(attack, unsafe()));
+}
+
+// The wrappers report a wrong argument under the function's own name, as Lua does.
+TEST_F(LuaSandbox, ArgumentErrorsNameTheFunction) {
+  expectRefused(run("io.open('own.txt', 'rw')"), {"bad argument #2 to 'open' (invalid mode)"});
+  expectRefused(run("io.open({})"), {"bad argument #1 to 'open' (string expected, got table)"});
+  expectRefused(run("os.remove()"),
+                {"bad argument #1 to 'remove' (string expected, got no value)"});
+  expectRefused(run("os.rename('a')"),
+                {"bad argument #2 to 'rename' (string expected, got no value)"});
+  expectRefused(run("dofile({})"), {"bad argument #1 to 'dofile' (string expected, got table)"});
 }
 
 TEST_F(LuaSandbox, AllowReadFolderIsReadableNotWritable) {
