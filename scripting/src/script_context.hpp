@@ -21,6 +21,7 @@ struct ScriptContext {
   PathPolicy paths;
   ModelCache cache;
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  bool timeLimitReached = false;  // set by the time-limit hook, even if the script caught its error
   std::optional<int> exitStatus;  // set by os.exit
 
   // A file the script names for reading: absolute as given; relative, the first that exists of

@@ -10,6 +10,7 @@
 #include "lua_api.hpp"
 #include "module.hpp"
 #include "script_context.hpp"
+#include "time_limit.hpp"
 
 namespace graspkit::lua {
 namespace {
@@ -18,18 +19,6 @@ namespace fs = std::filesystem;
 
 // The error value os.exit raises: a unique address, so no script value can be mistaken for it.
 char exit_sentinel;
-
-// How often (in VM instructions) the time limit is checked: cheap, and a tight loop still stops
-// within milliseconds of the limit.
-constexpr int kHookInterval = 10000;
-
-void timeLimitHook(lua_State* L, lua_Debug*) {
-  const ScriptContext& context = scriptContext(L);
-  if (!context.deadline || std::chrono::steady_clock::now() < *context.deadline) return;
-  // From now on every instruction raises, so a pcall in the script cannot swallow the limit.
-  lua_sethook(L, timeLimitHook, LUA_MASKCOUNT, 1);
-  luaL_error(L, "time limit of %f s exceeded (--timeout)", *context.options.timeoutSeconds);
-}
 
 int exitScript(lua_State* L) {
   int status = 0;
@@ -142,6 +131,7 @@ ScriptHost::ScriptHost(const fs::path& script, ScriptOptions options)
   if (L_ == nullptr) throw Error("cannot create a Lua state (out of memory)");
   *static_cast<ScriptContext**>(lua_getextraspace(L_)) = context_.get();
   luaL_openlibs(L_);
+  if (context_->options.timeoutSeconds) installTimeLimit(L_);  // before any coroutine exists
   if (context_->options.sandbox.unsafe) {
     // Lua modules beside the script are found with or without the sandbox.
     lua_getglobal(L_, "package");
@@ -178,23 +168,39 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   const int function = lua_gettop(L_) - nargs;
   lua_pushcfunction(L_, traceback);
   lua_insert(L_, function);
+  // A call made from inside another keeps the earlier of the two deadlines.
+  const auto outer_deadline = context_->deadline;
+  const bool outer_reached = context_->timeLimitReached;
+  std::optional<Watchdog> watchdog;  // for a library call no hook can interrupt
   if (const auto& limit = context_->options.timeoutSeconds) {
-    context_->deadline = std::chrono::steady_clock::now() +
-                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                             std::chrono::duration<double>(*limit));
-    lua_sethook(L_, timeLimitHook, LUA_MASKCOUNT, kHookInterval);
+    auto deadline = std::chrono::steady_clock::now() +
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(*limit));
+    if (outer_deadline && *outer_deadline < deadline) deadline = *outer_deadline;
+    context_->deadline = deadline;
+    watchdog.emplace(deadline, *limit);
   }
+  context_->timeLimitReached = false;
   context_->exitStatus.reset();
-  const int status = lua_pcall(L_, nargs, nresults, function);
+  int status = lua_pcall(L_, nargs, nresults, function);
+  watchdog.reset();
   const bool timed_out =
-      context_->deadline && std::chrono::steady_clock::now() >= *context_->deadline;
-  lua_sethook(L_, nullptr, 0, 0);
-  context_->deadline.reset();
+      context_->timeLimitReached || (status != LUA_OK && context_->deadline &&
+                                     std::chrono::steady_clock::now() >= *context_->deadline);
+  context_->timeLimitReached = outer_reached || context_->timeLimitReached;
+  context_->deadline = outer_deadline;
+  if (context_->options.timeoutSeconds) resetTimeLimitHook(L_);
+  if (timed_out && status == LUA_OK) {
+    // The script caught the limit's error (coroutine.resume does) and finished: still a timeout.
+    lua_settop(L_, function);
+    lua_pushliteral(L_, "the script caught the time limit's error");
+    status = LUA_ERRRUN;
+  }
   lua_remove(L_, function);
 
   ScriptOutcome outcome;
   if (status == LUA_OK) return outcome;
-  if (lua_touserdata(L_, -1) == &exit_sentinel) {
+  if (!timed_out && lua_touserdata(L_, -1) == &exit_sentinel) {
     lua_pop(L_, 1);
     outcome.exitStatus = context_->exitStatus.value_or(0);
     outcome.ok = outcome.exitStatus == 0;
@@ -207,6 +213,10 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   const char* message = lua_tostring(L_, -1);
   outcome.message = message != nullptr ? message : "(error object is not a string)";
   lua_pop(L_, 1);
+  if (timed_out && outcome.message.find("--timeout") == std::string::npos) {
+    // The script caught the limit's error, or the limit struck inside a library call.
+    outcome.message = timeLimitMessage(*context_->options.timeoutSeconds) + "\n" + outcome.message;
+  }
   return outcome;
 }
 

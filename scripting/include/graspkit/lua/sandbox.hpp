@@ -2,7 +2,7 @@
 // What a scenario script may touch. A sandboxed script has no way to run programs or load native
 // code (os.execute, io.popen, package.loadlib, C modules, the debug library, binary chunks are
 // gone) and reaches files only through PathPolicy: reads below the readable folders, writes
-// below the writable ones. --unsafe lifts it all.
+// below the writable ones. --unsafe lifts it all. scripting/README.md lists the details.
 
 #include <filesystem>
 #include <string>
@@ -18,8 +18,9 @@ struct SandboxOptions {
   std::vector<std::filesystem::path> allowWrite;  // --allow-write (readable too)
 };
 
-// Folder-based file permissions. A path is checked after resolving `..` and symbolic links
-// (of the part that exists), so neither leads out of an allowed folder.
+// Folder-based file permissions. A path is checked where the operating system would take it:
+// relative to the current folder, `..` and every symbolic link followed (a link to a file not
+// made yet too, as opening it for writing would create the target), so neither leads out.
 class PathPolicy {
  public:
   PathPolicy() = default;  // unrestricted
@@ -44,9 +45,11 @@ class PathPolicy {
 };
 
 // Replaces the standard library's dangerous parts in `L` (after luaL_openlibs): removes what
-// runs programs or native code, and routes io.open, io.lines, io.input, io.output, dofile,
-// loadfile, os.remove and os.rename through `policy`. `policy` must outlive the state. Lua
-// modules load through require only from `module_folders` (no C modules).
+// runs programs or native code (and os.tmpname, io.tmpfile), routes io.open, io.lines, io.input,
+// io.output, dofile, loadfile, os.remove, os.rename and require through `policy`, makes every
+// loader text-only, and refuses __gc metamethods (finalizers run where no time limit reaches).
+// A refusal is a Lua error naming the function, the file and the allowed folders. `policy` must
+// outlive the state. require finds Lua modules in `module_folders` (package.path), never C ones.
 void applySandbox(lua_State* L, const PathPolicy& policy,
                   const std::vector<std::filesystem::path>& module_folders);
 
