@@ -30,6 +30,7 @@ lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet) {
   options.sandbox.allowRead = flags.allowRead;
   options.sandbox.allowWrite = flags.allowWrite;
   options.timeoutSeconds = flags.timeout;
+  options.exitProcessWhenStuck = true;  // --timeout is a promise to the user: keep it
   options.load.roots = flags.roots;
   options.load.genericRobotFallback = flags.genericRobots;
   options.showProgress = !quiet && isatty(STDERR_FILENO) != 0;

@@ -178,7 +178,7 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
                         std::chrono::duration<double>(*limit));
     if (outer_deadline && *outer_deadline < deadline) deadline = *outer_deadline;
     context_->deadline = deadline;
-    watchdog.emplace(deadline, *limit);
+    if (context_->options.exitProcessWhenStuck) watchdog.emplace(deadline, *limit);
   }
   context_->timeLimitReached = false;
   context_->exitStatus.reset();

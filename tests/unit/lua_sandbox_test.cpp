@@ -546,7 +546,9 @@ TEST_F(LuaTimeLimit, WatchdogEndsAStuckLibraryCall) {
   const std::string stuck = "string.rep('a', 40):find(string.rep('a*', 40) .. 'b')";
   EXPECT_EXIT(
       {
-        ScriptHost host(scripts_ / "main.lua", limited());
+        ScriptOptions options = limited();
+        options.exitProcessWhenStuck = true;
+        ScriptHost host(scripts_ / "main.lua", options);
         host.runString(stuck, "stuck");
       },
       ::testing::ExitedWithCode(124),

@@ -20,6 +20,12 @@ struct ScriptOptions {
   SandboxOptions sandbox;
   // Wall-clock limit for run() and for each protectedCall(); none when empty.
   std::optional<double> timeoutSeconds;
+  // A call into a library function that never returns to Lua (a pathological string pattern,
+  // a long engine computation) cannot be stopped by the time limit's hook. With this set, a
+  // watchdog thread ends the whole process (status 124, the time-limit message on stderr) one
+  // second past the deadline. The command-line program sets it; a host embedding graspkit
+  // decides for itself.
+  bool exitProcessWhenStuck = false;
   // Model roots (--root) and the generic robot fallback. The roots are readable in the sandbox
   // and searched for relative model paths.
   LoadOptions load;
