@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of the graspkit program.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -73,6 +74,33 @@ void addTestCommand(CLI::App& app, TestOptions& options);
 // Prints a line per test and "N passed, N failed[, N skipped]" (or one JSON object). Exit
 // status 0 when no test failed, 1 when one did or no test was found.
 int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& out);
+
+struct PlanOptions {
+  std::filesystem::path world;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  int robot = 0;
+  std::string object;  // the first graspable body when empty
+  std::string planner = "simann";
+  std::string energy = "contact";
+  std::string space = "axis-angle";
+  std::string posture = "eigen";
+  std::string mode = "two-stage";
+  std::string preset;            // the planner's default when empty
+  std::vector<std::string> set;  // KEY=VALUE planner options
+  std::optional<std::int64_t> steps;
+  std::optional<double> seconds;
+  std::optional<int> threads;  // every core when unset
+  std::uint64_t seed = 1;
+  int top = 20;
+  bool json = false;
+  std::filesystem::path out;
+};
+
+void addPlanCommand(CLI::App& app, PlanOptions& options);
+// Prints the best grasps as a table (or JSON); with --out also writes the JSON and one world
+// file per grasp. Progress goes to stderr when it is a terminal.
+int runPlan(const PlanOptions& options, bool quiet, std::ostream& out);
 
 // The options every command that loads files shares: --root and --generic-robots.
 void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,

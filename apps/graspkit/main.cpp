@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   graspkit::cli::addRunCommand(app, run);
   graspkit::cli::TestOptions test;
   graspkit::cli::addTestCommand(app, test);
+  graspkit::cli::PlanOptions plan;
+  graspkit::cli::addPlanCommand(app, plan);
 
   try {
     app.parse(argc, argv);
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("plugins")) return graspkit::cli::runPlugins(plugins, std::cout);
     if (app.got_subcommand("run")) return graspkit::cli::runRun(run, quiet);
     if (app.got_subcommand("test")) return graspkit::cli::runTest(test, quiet, verbose, std::cout);
+    if (app.got_subcommand("plan")) return graspkit::cli::runPlan(plan, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;

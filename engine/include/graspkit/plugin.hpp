@@ -18,8 +18,9 @@ class Registrar;
 }
 
 // Bump when anything a plugin sees changes layout: this descriptor, Registrar, RobotType,
-// RobotModel, QualityMeasure.
-#define GRASPKIT_PLUGIN_ABI_VERSION 1u
+// RobotModel, QualityMeasure, SearchEnergy, Planner and the planning structs.
+// 2: Registrar gained addSearchEnergy and addPlanner.
+#define GRASPKIT_PLUGIN_ABI_VERSION 2u
 #define GRASPKIT_PLUGIN_SYMBOL "graspkit_plugin_v1"
 
 extern "C" {

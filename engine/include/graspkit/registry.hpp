@@ -1,5 +1,6 @@
 #pragma once
-// The Registry: named factories for everything a plugin can add (robot types, quality measures),
+// The Registry: named factories for everything a plugin can add (robot types, quality measures,
+// search energies, grasp planners),
 // each remembered with the plugin that provided it. A name missing from the registry makes its
 // PluginLoader look for a plugin providing it (see plugin_loader.hpp).
 //
@@ -14,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "graspkit/planning/planner.hpp"
+#include "graspkit/planning/search_energy.hpp"
 #include "graspkit/plugin_loader.hpp"
 #include "graspkit/quality.hpp"
 #include "graspkit/robot_type.hpp"
@@ -30,10 +33,13 @@ class Registrar {
   virtual ~Registrar() = default;
   virtual void addRobotType(const std::string& name, RobotTypeFactory factory) = 0;
   virtual void addQualityMeasure(const std::string& name, QualityMeasureFactory factory) = 0;
+  virtual void addSearchEnergy(const std::string& name, SearchEnergyFactory factory) = 0;
+  virtual void addPlanner(const std::string& name, PlannerFactory factory) = 0;
 };
 
-enum class FactoryKind { RobotType, QualityMeasure };
-const char* toString(FactoryKind kind);  // "robot type", "quality measure"
+enum class FactoryKind { RobotType, QualityMeasure, SearchEnergy, Planner };
+// "robot type", "quality measure", "search energy", "planner"
+const char* toString(FactoryKind kind);
 
 // Who provided a name: a plugin (name, version, file), or the engine itself (plugin empty).
 struct Provenance {
@@ -45,7 +51,8 @@ struct Provenance {
 
 class Registry {
  public:
-  // With the engine's built-ins: robot types Robot and Hand, quality measures epsilon and volume.
+  // With the engine's built-ins: robot types Robot and Hand, quality measures epsilon and
+  // volume, and GraspIt!'s search energies (search_energy.hpp).
   Registry();
   Registry(const Registry&) = delete;
   Registry& operator=(const Registry&) = delete;
@@ -58,6 +65,10 @@ class Registry {
   // graspkit::Error listing the available types and the plugin search path when none does.
   std::shared_ptr<const RobotType> robotType(const std::string& name);
   std::unique_ptr<QualityMeasure> makeQualityMeasure(const std::string& name);
+  // A new search energy; GraspIt!'s names (CONTACT_ENERGY, ...) are accepted too.
+  std::unique_ptr<SearchEnergy> makeSearchEnergy(const std::string& name);
+  // A new planner for `request`; the plugin providing `name` is loaded when needed.
+  std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningRequest& request);
 
   bool contains(FactoryKind kind, const std::string& name) const;
   // Registered names of one kind, sorted (without loading anything).
@@ -69,11 +80,15 @@ class Registry {
   void addRobotType(const std::string& name, RobotTypeFactory factory, Provenance from = {});
   void addQualityMeasure(const std::string& name, QualityMeasureFactory factory,
                          Provenance from = {});
+  void addSearchEnergy(const std::string& name, SearchEnergyFactory factory, Provenance from = {});
+  void addPlanner(const std::string& name, PlannerFactory factory, Provenance from = {});
 
  private:
   struct Entry {
     RobotTypeFactory robotType;
     QualityMeasureFactory qualityMeasure;
+    SearchEnergyFactory searchEnergy;
+    PlannerFactory planner;
     std::shared_ptr<const RobotType> robotTypeInstance;  // made once, on first use
     Provenance from;
   };

@@ -27,14 +27,23 @@ class StagingRegistrar final : public Registrar {
     std::string name;
     RobotTypeFactory robotType;
     QualityMeasureFactory qualityMeasure;
+    SearchEnergyFactory searchEnergy;
+    PlannerFactory planner;
+    bool hasFactory() const { return robotType || qualityMeasure || searchEnergy || planner; }
   };
   std::vector<Staged> staged;
 
   void addRobotType(const std::string& name, RobotTypeFactory factory) override {
-    staged.push_back({FactoryKind::RobotType, name, std::move(factory), {}});
+    staged.push_back({FactoryKind::RobotType, name, std::move(factory), {}, {}, {}});
   }
   void addQualityMeasure(const std::string& name, QualityMeasureFactory factory) override {
-    staged.push_back({FactoryKind::QualityMeasure, name, {}, std::move(factory)});
+    staged.push_back({FactoryKind::QualityMeasure, name, {}, std::move(factory), {}, {}});
+  }
+  void addSearchEnergy(const std::string& name, SearchEnergyFactory factory) override {
+    staged.push_back({FactoryKind::SearchEnergy, name, {}, {}, std::move(factory), {}});
+  }
+  void addPlanner(const std::string& name, PlannerFactory factory) override {
+    staged.push_back({FactoryKind::Planner, name, {}, {}, {}, std::move(factory)});
   }
 };
 
@@ -184,7 +193,7 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
   for (const auto& item : staging.staged) {
     const char* kind = toString(item.kind);
     if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
-    if (!item.robotType && !item.qualityMeasure)
+    if (!item.hasFactory())
       return fail(fmt::format("registers {} '{}' with no factory", kind, item.name));
     if (!names.insert({item.kind, item.name}).second)
       return fail(fmt::format("registers {} '{}' twice", kind, item.name));
@@ -195,10 +204,20 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
   }
   const Provenance from{info.name, info.version, file};
   for (auto& item : staging.staged) {
-    if (item.kind == FactoryKind::RobotType)
-      registry_.addRobotType(item.name, std::move(item.robotType), from);
-    else
-      registry_.addQualityMeasure(item.name, std::move(item.qualityMeasure), from);
+    switch (item.kind) {
+      case FactoryKind::RobotType:
+        registry_.addRobotType(item.name, std::move(item.robotType), from);
+        break;
+      case FactoryKind::QualityMeasure:
+        registry_.addQualityMeasure(item.name, std::move(item.qualityMeasure), from);
+        break;
+      case FactoryKind::SearchEnergy:
+        registry_.addSearchEnergy(item.name, std::move(item.searchEnergy), from);
+        break;
+      case FactoryKind::Planner:
+        registry_.addPlanner(item.name, std::move(item.planner), from);
+        break;
+    }
     info.provides.emplace_back(item.kind, item.name);
   }
   info.loaded = true;

@@ -14,6 +14,10 @@ const char* toString(FactoryKind kind) {
       return "robot type";
     case FactoryKind::QualityMeasure:
       return "quality measure";
+    case FactoryKind::SearchEnergy:
+      return "search energy";
+    case FactoryKind::Planner:
+      return "planner";
   }
   return "factory";
 }
@@ -26,6 +30,7 @@ std::string Provenance::describe() const {
 Registry::Registry() : loader_(*this) {
   addBuiltinRobotTypes(*this);
   addBuiltinQualityMeasures(*this);
+  addBuiltinSearchEnergies(*this);
 }
 
 Registry& Registry::global() {
@@ -44,13 +49,36 @@ void Registry::add(FactoryKind kind, const std::string& name, Entry entry) {
 
 void Registry::addRobotType(const std::string& name, RobotTypeFactory factory, Provenance from) {
   if (!factory) throw Error(fmt::format("robot type '{}' has no factory", name));
-  add(FactoryKind::RobotType, name, Entry{std::move(factory), {}, nullptr, std::move(from)});
+  Entry entry;
+  entry.robotType = std::move(factory);
+  entry.from = std::move(from);
+  add(FactoryKind::RobotType, name, std::move(entry));
 }
 
 void Registry::addQualityMeasure(const std::string& name, QualityMeasureFactory factory,
                                  Provenance from) {
   if (!factory) throw Error(fmt::format("quality measure '{}' has no factory", name));
-  add(FactoryKind::QualityMeasure, name, Entry{{}, std::move(factory), nullptr, std::move(from)});
+  Entry entry;
+  entry.qualityMeasure = std::move(factory);
+  entry.from = std::move(from);
+  add(FactoryKind::QualityMeasure, name, std::move(entry));
+}
+
+void Registry::addSearchEnergy(const std::string& name, SearchEnergyFactory factory,
+                               Provenance from) {
+  if (!factory) throw Error(fmt::format("search energy '{}' has no factory", name));
+  Entry entry;
+  entry.searchEnergy = std::move(factory);
+  entry.from = std::move(from);
+  add(FactoryKind::SearchEnergy, name, std::move(entry));
+}
+
+void Registry::addPlanner(const std::string& name, PlannerFactory factory, Provenance from) {
+  if (!factory) throw Error(fmt::format("planner '{}' has no factory", name));
+  Entry entry;
+  entry.planner = std::move(factory);
+  entry.from = std::move(from);
+  add(FactoryKind::Planner, name, std::move(entry));
 }
 
 bool Registry::contains(FactoryKind kind, const std::string& name) const {
@@ -113,6 +141,28 @@ std::unique_ptr<QualityMeasure> Registry::makeQualityMeasure(const std::string& 
     throw Error(fmt::format("the factory of quality measure '{}' ({}) made nothing", name,
                             entry->from.describe()));
   return measure;
+}
+
+std::unique_ptr<SearchEnergy> Registry::makeSearchEnergy(const std::string& name) {
+  const std::string canonical = canonicalEnergyName(name);
+  std::optional<Entry> entry = find(FactoryKind::SearchEnergy, canonical);
+  if (!entry) throwUnknown(FactoryKind::SearchEnergy, name);
+  std::unique_ptr<SearchEnergy> energy = entry->searchEnergy();
+  if (!energy)
+    throw Error(fmt::format("the factory of search energy '{}' ({}) made nothing", canonical,
+                            entry->from.describe()));
+  return energy;
+}
+
+std::unique_ptr<Planner> Registry::makePlanner(const std::string& name,
+                                               const PlanningRequest& request) {
+  std::optional<Entry> entry = find(FactoryKind::Planner, name);
+  if (!entry) throwUnknown(FactoryKind::Planner, name);
+  std::unique_ptr<Planner> planner = entry->planner(request);
+  if (!planner)
+    throw Error(
+        fmt::format("the factory of planner '{}' ({}) made nothing", name, entry->from.describe()));
+  return planner;
 }
 
 }  // namespace graspkit

@@ -1,0 +1,127 @@
+#pragma once
+// The grasp-planner interface. A planner is made from a PlanningRequest (the world, the hand,
+// the object, the search space, the energy, the seed and the thread count), advanced with
+// step(), and asked for its ranked best list with best(). Planners come from the registry by
+// name ("simann", "list", "approach", or a plugin's own); runPlanner() drives one within a step
+// or time budget and reports progress, and finishGrasps() closes the hand on each result and
+// measures the grasp.
+//
+// Determinism: for the same request (seed and thread count included) and the same step budget,
+// a planner returns the same list. A time budget ends wherever the clock says, so it is not.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graspkit/body_ref.hpp"
+#include "graspkit/planning/search_energy.hpp"
+#include "graspkit/planning/search_space.hpp"
+#include "graspkit/planning/search_state.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit {
+
+class PlanningScene;
+
+struct PlanningRequest {
+  std::shared_ptr<const World> world;  // the planner works on clones of it
+  int robot = 0;
+  BodyRef object;
+  PositionSpace position = PositionSpace::AxisAngle;
+  PostureSpace posture = PostureSpace::Eigen;
+  std::string energy = "contact";  // a registered search energy
+  // An energy given in code (e.g. a Lua function); used instead of `energy` when set. A
+  // planner calls it from one thread only, so it need not be thread-safe.
+  SearchEnergyFactory customEnergy;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  int bestListSize = 20;
+  // Planner-specific settings, e.g. simann's "preset" and "mode"; a planner refuses keys it
+  // does not know.
+  std::map<std::string, std::string> options;
+  // Hand poses and postures to evaluate (the list planner) or to start from.
+  std::vector<SearchState> states;
+};
+
+// One planned grasp: the hand pose and DOFs the planner found and, after finishGrasps(), what
+// closing the hand there gives.
+struct PlannedGrasp {
+  std::vector<double> values;              // in the request's search space
+  Transform pose = Transform::Identity();  // the hand's world pose
+  std::vector<double> dofs;                // before autograsp
+  double energy = kUnevaluatedEnergy;
+  bool evaluated = false;  // set by finishGrasps()
+  std::vector<double> closedDofs;
+  double epsilon = -1.0;
+  double volume = 0.0;
+  int contacts = 0;
+  bool forceClosure = false;
+};
+
+struct PlannerProgress {
+  std::int64_t steps = 0;
+  double seconds = 0.0;
+  double bestEnergy = kUnevaluatedEnergy;
+  int states = 0;  // in the best list
+};
+
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  // Advances the search by about `steps` steps in total (a concurrent planner shares them out
+  // among its chains).
+  virtual void step(std::int64_t steps) = 0;
+  // Whether the planner has nothing more to do (a list planner that evaluated its list).
+  virtual bool done() const { return false; }
+  // Runs once the budget is spent: a last stage such as the two-stage planner's refinement.
+  // Its steps are not part of the budget (they are counted in stepsDone()).
+  virtual void finish() {}
+  virtual std::int64_t stepsDone() const = 0;
+  // The best states so far, best first.
+  virtual std::vector<PlannedGrasp> best() const = 0;
+};
+
+using PlannerFactory = std::function<std::unique_ptr<Planner>(const PlanningRequest&)>;
+
+struct PlanningBudget {
+  std::optional<std::int64_t> steps;  // total steps
+  std::optional<double> seconds;      // wall time
+  // Called about every `reportEvery` seconds; returning false stops the run.
+  std::function<bool(const PlannerProgress&)> progress;
+  double reportEvery = 0.25;
+};
+
+struct PlanningRun {
+  std::vector<PlannedGrasp> grasps;
+  std::int64_t steps = 0;
+  double seconds = 0.0;
+};
+
+// Steps `planner` until the budget is spent (or it is done, or progress returns false). Throws
+// graspkit::Error when the budget has neither steps nor seconds.
+PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget);
+
+// Closes the hand on each grasp (autograsp from its pose and DOFs) and measures the result with
+// the L1 wrench space: epsilon, volume, contacts, force closure. Uses up to `threads` threads.
+void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& grasps,
+                  int threads = 1);
+
+// Helpers for planner implementations.
+std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& request);
+// A PlanningScene on a clone of the request's world. Throws graspkit::Error for a bad request.
+std::unique_ptr<PlanningScene> makePlanningScene(const PlanningRequest& request,
+                                                 std::shared_ptr<const SearchSpace> space);
+// The request's energy: its custom energy, or the registry's by name.
+std::unique_ptr<SearchEnergy> makeSearchEnergy(const PlanningRequest& request);
+// The start state: the hand where the world has it, encoded in the space (the middle of each
+// range for the ellipsoid space).
+SearchState startState(const PlanningScene& scene);
+// A PlannedGrasp (not yet finished) for a state.
+PlannedGrasp plannedGrasp(const SearchSpace& space, const SearchState& state);
+
+}  // namespace graspkit

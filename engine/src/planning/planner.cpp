@@ -1,0 +1,171 @@
+#include "graspkit/planning/planner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "graspkit/autograsp.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/registry.hpp"
+
+namespace graspkit {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// How many steps to take between looks at the clock: about a hundredth of a second's worth,
+// once the planner's speed is known.
+std::int64_t chunkFor(std::int64_t done, double seconds) {
+  if (done <= 0 || seconds <= 0) return 16;
+  const double perSecond = static_cast<double>(done) / seconds;
+  return std::clamp<std::int64_t>(static_cast<std::int64_t>(perSecond / 100.0), 1, 100000);
+}
+
+PlannerProgress progressOf(const Planner& planner, double seconds,
+                           const std::vector<PlannedGrasp>& best) {
+  PlannerProgress p;
+  p.steps = planner.stepsDone();
+  p.seconds = seconds;
+  p.states = static_cast<int>(best.size());
+  if (!best.empty()) p.bestEnergy = best.front().energy;
+  return p;
+}
+
+void finishOne(PlanningScene& scene, PlannedGrasp& grasp) {
+  scene.world().setRobotPose(scene.robot(), grasp.pose);
+  scene.world().setDofValues(scene.robot(), grasp.dofs, LimitPolicy::Clamp);
+  const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
+  const Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
+  grasp.closedDofs = closed.dofValues;
+  grasp.epsilon = measured.epsilon;
+  grasp.volume = measured.volume;
+  grasp.contacts = static_cast<int>(measured.contacts.size());
+  grasp.forceClosure = measured.forceClosure;
+  grasp.evaluated = true;
+}
+
+}  // namespace
+
+PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget) {
+  if (!budget.steps && !budget.seconds)
+    throw Error("a planning budget needs a number of steps or of seconds");
+  if (budget.steps && *budget.steps < 0)
+    throw Error(fmt::format("a planning budget of {} steps is not valid", *budget.steps));
+  if (budget.seconds && !(*budget.seconds >= 0))
+    throw Error(fmt::format("a planning budget of {} seconds is not valid", *budget.seconds));
+  const auto start = Clock::now();
+  const std::int64_t first = planner.stepsDone();
+  double lastReport = 0.0;
+  while (!planner.done()) {
+    const std::int64_t done = planner.stepsDone() - first;
+    const double elapsed = secondsSince(start);
+    if (budget.steps && done >= *budget.steps) break;
+    if (budget.seconds && elapsed >= *budget.seconds) break;
+    std::int64_t chunk = chunkFor(done, elapsed);
+    if (budget.steps) chunk = std::min(chunk, *budget.steps - done);
+    planner.step(chunk);
+    if (budget.progress && secondsSince(start) - lastReport >= budget.reportEvery) {
+      lastReport = secondsSince(start);
+      if (!budget.progress(progressOf(planner, lastReport, planner.best()))) break;
+    }
+  }
+  planner.finish();
+  PlanningRun run;
+  run.grasps = planner.best();
+  run.steps = planner.stepsDone() - first;
+  run.seconds = secondsSince(start);
+  if (budget.progress) budget.progress(progressOf(planner, run.seconds, run.grasps));
+  return run;
+}
+
+void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& grasps, int threads) {
+  if (grasps.empty()) return;
+  const auto space = makeSearchSpace(request);
+  const int workers = std::clamp(threads, 1, static_cast<int>(grasps.size()));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+  auto work = [&](int w) {
+    try {
+      auto scene = makePlanningScene(request, space);
+      for (std::size_t i = next++; i < grasps.size(); i = next++) finishOne(*scene, grasps[i]);
+    } catch (...) {
+      errors[static_cast<std::size_t>(w)] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (std::thread& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& request) {
+  if (!request.world) throw Error("a planning request needs a world");
+  const World& world = *request.world;
+  if (request.robot < 0 || request.robot >= world.robotCount())
+    throw Error(fmt::format("robot {} out of range: the world has {} robot(s)", request.robot,
+                            world.robotCount()));
+  if (request.object.kind != BodyRef::Kind::Body || !isValid(world, request.object))
+    throw Error("the object to grasp must be a body of the world");
+  const Transform reference = request.position == PositionSpace::Approach
+                                  ? world.robot(request.robot).pose()
+                                  : bodyPose(world, request.object);
+  return std::make_shared<const SearchSpace>(world.robot(request.robot).model(), request.position,
+                                             request.posture, reference);
+}
+
+std::unique_ptr<PlanningScene> makePlanningScene(const PlanningRequest& request,
+                                                 std::shared_ptr<const SearchSpace> space) {
+  if (!request.world) throw Error("a planning request needs a world");
+  return std::make_unique<PlanningScene>(request.world->clone(), request.robot, request.object,
+                                         std::move(space));
+}
+
+std::unique_ptr<SearchEnergy> makeSearchEnergy(const PlanningRequest& request) {
+  if (request.customEnergy) {
+    auto energy = request.customEnergy();
+    if (!energy) throw Error("the custom search energy's factory made nothing");
+    return energy;
+  }
+  return Registry::global().makeSearchEnergy(request.energy);
+}
+
+SearchState startState(const PlanningScene& scene) {
+  const SearchSpace& space = scene.space();
+  SearchState state;
+  if (space.positionSpace() == PositionSpace::Ellipsoid) {
+    state.values.resize(static_cast<std::size_t>(space.size()));
+    for (int i = 0; i < space.size(); ++i)
+      state.values[i] = 0.5 * (space.variables()[i].min + space.variables()[i].max);
+    const auto& dofs = scene.hand().dofValues();
+    const auto encoded = SearchSpace(scene.hand().model(), PositionSpace::Complete,
+                                     space.postureSpace(), space.reference())
+                             .encode(scene.hand().pose(), {dofs.begin(), dofs.end()});
+    std::copy_n(encoded.begin(), space.postureSize(), state.values.begin());
+    return state;
+  }
+  const auto& dofs = scene.hand().dofValues();
+  state.values = space.encode(scene.hand().pose(), {dofs.begin(), dofs.end()});
+  return state;
+}
+
+PlannedGrasp plannedGrasp(const SearchSpace& space, const SearchState& state) {
+  PlannedGrasp grasp;
+  grasp.values = state.values;
+  grasp.pose = space.handPose(state.values);
+  grasp.dofs = space.dofs(state.values);
+  grasp.energy = state.energy;
+  return grasp;
+}
+
+}  // namespace graspkit

@@ -1,0 +1,107 @@
+#include "graspkit/planning/planning_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "graspkit/collision.hpp"
+#include "graspkit/error.hpp"
+
+namespace graspkit {
+
+namespace {
+
+RayScene objectOnly(const World& world, const BodyRef& object) {
+  RaySceneOptions options;
+  options.include = [object](const BodyRef& body) { return body == object; };
+  return RayScene(world, options);
+}
+
+World validated(World world, int robot, const BodyRef& object) {
+  if (robot < 0 || robot >= world.robotCount())
+    throw Error(
+        fmt::format("robot {} out of range: the world has {} robot(s)", robot, world.robotCount()));
+  if (world.robot(robot).model().chains.empty())
+    throw Error(fmt::format("robot {} ({}) has no fingers to plan grasps with", robot,
+                            world.robot(robot).name()));
+  if (object.kind != BodyRef::Kind::Body || !isValid(world, object))
+    throw Error("the object to grasp must be a body of the world");
+  return world;
+}
+
+}  // namespace
+
+PlanningScene::PlanningScene(World world, int robot, BodyRef object,
+                             std::shared_ptr<const SearchSpace> space)
+    : world_(validated(std::move(world), robot, object)),
+      robot_(robot),
+      object_(object),
+      space_(std::move(space)),
+      object_radius_(bodyModel(world_, object).maxRadius),
+      object_scene_(objectOnly(world_, object)) {
+  if (!space_) throw Error("a planning scene needs a search space");
+  for (const BodyRef& body : worldBodies(world_))
+    if (body.isLink() && body.index == robot_) hand_links_.push_back(body);
+}
+
+void PlanningScene::place(std::span<const double> values) {
+  const Robot& robot = hand();
+  for (int j = 0; j < static_cast<int>(robot.breakaway().size()); ++j)
+    if (robot.breakaway()[j].engaged) world_.setBreakaway(robot_, j, BreakawayState{});
+  world_.setRobotPose(robot_, space_->handPose(values));
+  const std::vector<double> dofs = space_->dofs(values);
+  world_.setDofValues(robot_, dofs, LimitPolicy::Clamp);
+}
+
+HandConfiguration PlanningScene::handConfiguration() const {
+  const Robot& robot = hand();
+  return {robot.pose(),
+          {robot.dofValues().begin(), robot.dofValues().end()},
+          {robot.breakaway().begin(), robot.breakaway().end()}};
+}
+
+void PlanningScene::restore(const HandConfiguration& configuration) {
+  for (int j = 0; j < static_cast<int>(configuration.breakaway.size()); ++j)
+    world_.setBreakaway(robot_, j, configuration.breakaway[j]);
+  world_.setRobotPose(robot_, configuration.pose);
+  world_.setDofValues(robot_, configuration.dofs, LimitPolicy::Ignore);
+}
+
+bool PlanningScene::handCollides() const {
+  return anyCollision(world_, hand_links_);
+}
+
+std::vector<PlacedVirtualContact> PlanningScene::virtualContacts() const {
+  const Robot& robot = hand();
+  const auto& contacts = robot.model().virtualContacts;
+  std::vector<PlacedVirtualContact> placed;
+  placed.reserve(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const VirtualContact& contact = contacts[i];
+    const Transform& link =
+        contact.finger < 0 ? robot.pose() : robot.linkPose(contact.finger, contact.link);
+    PlacedVirtualContact p;
+    p.point = link * contact.location;
+    p.normal = (link.linear() * contact.normal).normalized();
+    p.frame = link * makeTransform(contact.translation, contact.rotation);
+    p.index = static_cast<int>(i);
+    placed.push_back(p);
+  }
+  return placed;
+}
+
+std::optional<SurfacePoint> PlanningScene::nearestObjectPoint(const Vector3& point,
+                                                              double maxDistance) const {
+  return object_scene_.nearestSurfacePoint(point, maxDistance);
+}
+
+}  // namespace graspkit
+
+namespace graspkit {
+
+std::optional<double> evaluateState(PlanningScene& scene, SearchEnergy& energy,
+                                    std::span<const double> values) {
+  scene.place(values);
+  if (energy.rejectsCollisions() && scene.handCollides()) return std::nullopt;
+  return energy.evaluate(scene);
+}
+
+}  // namespace graspkit

@@ -1,0 +1,168 @@
+// GraspIt!'s search energies (see graspkit/planning/search_energy.hpp for the formulas).
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+
+#include "graspkit/autograsp.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/planning/search_energy.hpp"
+#include "graspkit/quality.hpp"
+#include "graspkit/registry.hpp"
+#include "graspkit/robot.hpp"
+#include "plugin/builtins.hpp"
+
+namespace graspkit {
+
+namespace {
+
+// GraspIt!'s contact energy weighs a contact facing away from the object like 50 mm of distance
+// per unit of (1 - cos).
+constexpr double kNormalWeight = 50.0;
+
+// Potential quality: a virtual contact counts when its wrench scale exceeds this.
+constexpr double kPotentialCountThreshold = 0.25;
+constexpr double kPotentialRange = 50.0;     // mm: farther contacts scale to 0
+constexpr double kPotentialMinCosine = 0.7;  // contacts facing farther away scale to 0
+
+// Strict autograsp: how far the palm may approach before closing, mm.
+constexpr double kStrictApproach = 30.0;
+// GraspIt!'s weights of volume and epsilon in the autograsp-quality energy.
+constexpr double kVolumeWeight = 30.0;
+constexpr double kEpsilonWeight = 100.0;
+
+struct ContactSample {
+  Vector3 toObject = Vector3::Zero();  // from the virtual contact to the nearest object point
+  double distance = 0.0;
+  double cosine = 1.0;  // between the contact normal and toObject
+};
+
+ContactSample sample(const PlanningScene& scene, const PlacedVirtualContact& contact) {
+  ContactSample s;
+  const auto nearest = scene.nearestObjectPoint(contact.point);
+  if (!nearest) return s;  // an object without triangles: nothing to approach
+  s.toObject = nearest->point - contact.point;
+  s.distance = s.toObject.norm();
+  s.cosine = s.distance > 0 ? contact.normal.dot(s.toObject) / s.distance : 1.0;
+  return s;
+}
+
+double contactEnergy(const PlanningScene& scene) {
+  const auto contacts = scene.virtualContacts();
+  if (contacts.empty()) return 0.0;
+  double total = 0.0;
+  for (const PlacedVirtualContact& contact : contacts) {
+    const ContactSample s = sample(scene, contact);
+    total += s.distance + kNormalWeight * (1.0 - s.cosine);
+  }
+  return total / static_cast<double>(contacts.size());
+}
+
+// GraspIt!'s potentialQualityScalingFunction (3.14 is its constant, not pi).
+double potentialScale(double distance, double cosine) {
+  if (cosine < kPotentialMinCosine || distance > kPotentialRange) return 0.0;
+  return std::cos(3.14 * distance / kPotentialRange) + 1.0;
+}
+
+double potentialQualityEnergy(const PlanningScene& scene) {
+  const auto& model = scene.hand().model();
+  std::vector<std::vector<Vector6>> wrenches;
+  for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
+    const ContactSample s = sample(scene, contact);
+    const double scale = potentialScale(s.distance, s.cosine);
+    if (scale <= kPotentialCountThreshold) continue;
+    const VirtualContact& source = model.virtualContacts[static_cast<std::size_t>(contact.index)];
+    const Matrix3 frame = contact.frame.linear();
+    std::vector<Vector6> set;
+    for (const auto& edge : source.frictionEdges) {
+      const Vector3 force =
+          frame * Vector3(source.sCof * edge[0], source.sCof * edge[1], 1.0) * scale;
+      Vector6 w = Vector6::Zero();
+      w.head<3>() = force;
+      set.push_back(w);
+    }
+    if (!set.empty()) wrenches.push_back(std::move(set));
+  }
+  if (wrenches.size() < 3) return 1.0;
+  WrenchSpaceOptions options;
+  options.dimensions = {true, true, true, false, false, false};
+  options.method = HullMethod::SkipNonForceClosure;
+  return -epsilonQuality(graspWrenchSpace(wrenches, options));
+}
+
+class ContactEnergy final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override { return contactEnergy(scene); }
+};
+
+class PotentialQualityEnergy final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override { return potentialQualityEnergy(scene); }
+};
+
+class GuidedPotentialQualityEnergy final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override {
+    const double quality = potentialQualityEnergy(scene);
+    return quality <= 0.0 ? quality : contactEnergy(scene);
+  }
+};
+
+double autoGraspQuality(PlanningScene& scene) {
+  autoGrasp(scene.world(), scene.robot());
+  const Grasp grasp = analyzeGrasp(scene.world(), scene.robot(), scene.object());
+  return -(kVolumeWeight * grasp.volume + kEpsilonWeight * std::max(grasp.epsilon, 0.0));
+}
+
+class AutoGraspQualityEnergy final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override { return autoGraspQuality(scene); }
+};
+
+class StrictAutoGraspEnergy final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override {
+    const Transform start = scene.hand().pose();
+    ApproachOptions approach;
+    approach.maxDistance = kStrictApproach;
+    const AutoGraspResult moved = approachToContact(scene.world(), scene.robot(), approach);
+    const bool palmTouches =
+        moved.end == MotionEnd::Contact &&
+        std::any_of(moved.contacts.begin(), moved.contacts.end(),
+                    [&](const Contact& c) { return c.body1 == BodyRef::robotBase(scene.robot()); });
+    if (!palmTouches) scene.world().setRobotPose(scene.robot(), start);
+    const double quality = autoGraspQuality(scene);
+    return quality == 0.0 ? kUnevaluatedEnergy : quality;
+  }
+};
+
+template <typename E>
+SearchEnergyFactory factory() {
+  return [] { return std::make_unique<E>(); };
+}
+
+}  // namespace
+
+std::string canonicalEnergyName(std::string_view name) {
+  static const std::map<std::string, std::string, std::less<>> graspitNames = {
+      {"CONTACT_ENERGY", "contact"},
+      {"POTENTIAL_QUALITY_ENERGY", "potential-quality"},
+      {"GUIDED_POTENTIAL_QUALITY_ENERGY", "guided-potential-quality"},
+      {"AUTO_GRASP_QUALITY_ENERGY", "autograsp-quality"},
+      {"STRICT_AUTO_GRASP_ENERGY", "strict-autograsp"},
+  };
+  auto it = graspitNames.find(name);
+  return it == graspitNames.end() ? std::string(name) : it->second;
+}
+
+void addBuiltinSearchEnergies(Registry& registry) {
+  registry.addSearchEnergy("contact", factory<ContactEnergy>());
+  registry.addSearchEnergy("potential-quality", factory<PotentialQualityEnergy>());
+  registry.addSearchEnergy("guided-potential-quality", factory<GuidedPotentialQualityEnergy>());
+  registry.addSearchEnergy("autograsp-quality", factory<AutoGraspQualityEnergy>());
+  registry.addSearchEnergy("strict-autograsp", factory<StrictAutoGraspEnergy>());
+}
+
+}  // namespace graspkit

@@ -1,0 +1,209 @@
+#include "simann_planner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <set>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "annealing_chain.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/registry.hpp"
+
+namespace graspkit::simann {
+
+namespace {
+
+struct Settings {
+  ChainSettings search;
+  bool twoStage = false;
+  ChainSettings refine;
+  std::string refineEnergy = "autograsp-quality";
+  std::int64_t refineSteps = 40;
+};
+
+const AnnealingParameters& preset(const std::string& name) {
+  for (const AnnealingParameters& p : kPresets)
+    if (p.name == name) return p;
+  throw Error(
+      fmt::format("simann: unknown preset '{}'; expected DEFAULT, LOOP, MODIFIED, "
+                  "STRICT or ONLINE",
+                  name));
+}
+
+double number(const std::string& key, const std::string& text, double min) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(value) && value >= min) return value;
+  } catch (const std::exception&) {
+  }
+  throw Error(fmt::format("simann: option {} = '{}' is not a number >= {}", key, text, min));
+}
+
+Settings settingsFrom(const PlanningRequest& request) {
+  Settings s;
+  s.search.bestListSize = request.bestListSize;
+  s.refine.parameters = preset("STRICT");
+  s.refine.distanceThreshold = 0.3;  // GraspIt!'s guided planner's children
+  s.refine.jumpScale = 0.1;
+  s.refine.bestListSize = 1;
+  for (const auto& [key, value] : request.options) {
+    if (key == "preset")
+      s.search.parameters = preset(value);
+    else if (key == "mode") {
+      if (value != "anneal" && value != "two-stage")
+        throw Error(fmt::format("simann: mode '{}' unknown; expected anneal or two-stage", value));
+      s.twoStage = value == "two-stage";
+    } else if (key == "threshold")
+      s.search.distanceThreshold = number(key, value, 0.0);
+    else if (key == "refine-steps")
+      s.refineSteps = static_cast<std::int64_t>(number(key, value, 0.0));
+    else if (key == "refine-preset")
+      s.refine.parameters = preset(value);
+    else if (key == "refine-energy")
+      s.refineEnergy = value;
+    else if (key == "refine-jump")
+      s.refine.jumpScale = number(key, value, 0.0);
+    else
+      throw Error(
+          fmt::format("simann: unknown option '{}'; known: preset, mode, threshold, "
+                      "refine-steps, refine-preset, refine-energy, refine-jump",
+                      key));
+  }
+  return s;
+}
+
+// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first error.
+template <typename Job>
+void parallelFor(int count, int threads, Job job) {
+  const int workers = std::clamp(threads, 1, std::max(count, 1));
+  std::atomic<int> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+  auto work = [&](int w) {
+    try {
+      for (int i = next++; i < count; i = next++) job(i);
+    } catch (...) {
+      errors[static_cast<std::size_t>(w)] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (std::thread& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+class SimAnnPlanner final : public Planner {
+ public:
+  explicit SimAnnPlanner(const PlanningRequest& request)
+      : request_(request), settings_(settingsFrom(request)), space_(makeSearchSpace(request)) {
+    if (request.threads < 1)
+      throw Error(fmt::format("simann: {} threads is not valid", request.threads));
+    if (request.bestListSize < 1)
+      throw Error(fmt::format("simann: a best list of {} is not valid", request.bestListSize));
+    for (int c = 0; c < request.threads; ++c) {
+      auto scene = makePlanningScene(request, space_);
+      SearchState start = request.states.empty() ? startState(*scene) : request.states.front();
+      if (static_cast<int>(start.values.size()) != space_->size())
+        throw Error(fmt::format("simann: the start state has {} values; the {} space has {}",
+                                start.values.size(), toString(request.position), space_->size()));
+      start.energy = kUnevaluatedEnergy;
+      chains_.push_back(std::make_unique<AnnealingChain>(
+          std::move(scene), makeSearchEnergy(request), settings_.search, chainSeed(request.seed, c),
+          std::move(start)));
+    }
+  }
+
+  void step(std::int64_t steps) override {
+    target_ += steps;
+    const int count = static_cast<int>(chains_.size());
+    // Chain c's share of the total depends only on the total, so a step budget gives the same
+    // result however runPlanner chunks it.
+    parallelFor(count, count, [&](int c) {
+      const std::int64_t share = target_ / count + (c < target_ % count ? 1 : 0);
+      chains_[static_cast<std::size_t>(c)]->runTo(share);
+    });
+  }
+
+  std::int64_t stepsDone() const override {
+    std::int64_t total = refined_steps_;
+    for (const auto& chain : chains_) total += chain->steps();
+    return total;
+  }
+
+  void finish() override {
+    if (!settings_.twoStage || finished_) return;
+    finished_ = true;
+    const std::vector<SearchState> seeds = mergedStates();
+    std::vector<SearchState> refined(seeds.size());
+    std::vector<std::int64_t> steps(seeds.size(), 0);
+    PlanningRequest stage = request_;
+    stage.energy = settings_.refineEnergy;
+    stage.customEnergy = nullptr;
+    parallelFor(static_cast<int>(seeds.size()), request_.threads, [&](int i) {
+      const auto at = static_cast<std::size_t>(i);
+      // The seed itself is a candidate: evaluated first, so refinement never makes it worse.
+      auto scene = makePlanningScene(stage, space_);
+      auto energy = makeSearchEnergy(stage);
+      SearchState best = seeds[at];
+      best.energy = evaluateState(*scene, *energy, best.values).value_or(kUnevaluatedEnergy);
+      AnnealingChain chain(std::move(scene), std::move(energy), settings_.refine,
+                           chainSeed(request_.seed ^ 0x5EEDull, i), best);
+      chain.runTo(settings_.refineSteps);
+      if (!chain.best().states().empty() && chain.best().states().front().energy < best.energy)
+        best = chain.best().states().front();
+      refined[at] = std::move(best);
+      steps[at] = chain.steps() + 1;
+    });
+    for (std::int64_t s : steps) refined_steps_ += s;
+    BestList list = emptyList(settings_.refine.distanceThreshold);
+    for (const SearchState& s : refined) list.offer(s);
+    refined_ = list.states();
+  }
+
+  std::vector<PlannedGrasp> best() const override {
+    const std::vector<SearchState> states = finished_ ? refined_ : mergedStates();
+    std::vector<PlannedGrasp> grasps;
+    for (const SearchState& s : states) grasps.push_back(plannedGrasp(*space_, s));
+    return grasps;
+  }
+
+ private:
+  BestList emptyList(double threshold) const {
+    const double radius = chains_.front()->scene().objectRadius();
+    return BestList(request_.bestListSize, threshold,
+                    [space = space_, radius](std::span<const double> a, std::span<const double> b) {
+                      return space->distance(a, b, radius);
+                    });
+  }
+
+  std::vector<SearchState> mergedStates() const {
+    if (chains_.size() == 1) return chains_.front()->best().states();
+    BestList merged = emptyList(settings_.search.distanceThreshold);
+    for (const auto& chain : chains_) merged.merge(chain->best());
+    return merged.states();
+  }
+
+  PlanningRequest request_;
+  Settings settings_;
+  std::shared_ptr<const SearchSpace> space_;
+  std::vector<std::unique_ptr<AnnealingChain>> chains_;
+  std::int64_t target_ = 0;
+  bool finished_ = false;
+  std::vector<SearchState> refined_;
+  std::int64_t refined_steps_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Planner> makeSimAnnPlanner(const PlanningRequest& request) {
+  return std::make_unique<SimAnnPlanner>(request);
+}
+
+}  // namespace graspkit::simann

@@ -1,0 +1,15 @@
+// The simann plugin: GraspIt!'s eigengrasp simulated-annealing planner.
+
+#include "graspkit/plugin.hpp"
+#include "graspkit/registry.hpp"
+#include "simann_planner.hpp"
+
+namespace {
+
+void registerSimAnn(graspkit::Registrar& registrar) {
+  registrar.addPlanner("simann", graspkit::simann::makeSimAnnPlanner);
+}
+
+}  // namespace
+
+GRASPKIT_PLUGIN("simann", "1.0.0", registerSimAnn)
