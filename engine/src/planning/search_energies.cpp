@@ -6,6 +6,7 @@
 #include <map>
 
 #include "graspkit/autograsp.hpp"
+#include "graspkit/body_ref.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/planning/planning_scene.hpp"
 #include "graspkit/planning/search_energy.hpp"
@@ -39,22 +40,52 @@ struct ContactSample {
   double cosine = 1.0;  // between the contact normal and toObject
 };
 
-ContactSample sample(const PlanningScene& scene, const PlacedVirtualContact& contact) {
+// The nearest object point to each virtual contact, remembered between evaluations: the object
+// does not move while a search runs, so the distance to the last nearest point bounds the new
+// distance, and a bounded query is several times cheaper than an open one.
+class NearestPoints {
+ public:
+  std::optional<Vector3> find(const PlanningScene& scene, const PlacedVirtualContact& contact) {
+    const Transform objectPose = bodyPose(scene.world(), scene.object());
+    if (!objectPose.isApprox(object_pose_, 0.0)) {
+      object_pose_ = objectPose;
+      last_.clear();
+    }
+    const auto i = static_cast<std::size_t>(contact.index);
+    if (last_.size() <= i) last_.resize(i + 1);
+    std::optional<SurfacePoint> nearest;
+    if (last_[i]) {
+      const double bound = (*last_[i] - contact.point).norm();
+      nearest = scene.nearestObjectPoint(contact.point, bound * (1.0 + 1e-9) + 1e-9);
+    }
+    if (!nearest) nearest = scene.nearestObjectPoint(contact.point);
+    if (!nearest) return std::nullopt;
+    last_[i] = nearest->point;
+    return nearest->point;
+  }
+
+ private:
+  Transform object_pose_ = Transform(Eigen::Matrix4d::Zero());
+  std::vector<std::optional<Vector3>> last_;
+};
+
+ContactSample sample(const PlanningScene& scene, const PlacedVirtualContact& contact,
+                     NearestPoints& cache) {
   ContactSample s;
-  const auto nearest = scene.nearestObjectPoint(contact.point);
+  const auto nearest = cache.find(scene, contact);
   if (!nearest) return s;  // an object without triangles: nothing to approach
-  s.toObject = nearest->point - contact.point;
+  s.toObject = *nearest - contact.point;
   s.distance = s.toObject.norm();
   s.cosine = s.distance > 0 ? contact.normal.dot(s.toObject) / s.distance : 1.0;
   return s;
 }
 
-double contactEnergy(const PlanningScene& scene) {
+double contactEnergy(const PlanningScene& scene, NearestPoints& cache) {
   const auto contacts = scene.virtualContacts();
   if (contacts.empty()) return 0.0;
   double total = 0.0;
   for (const PlacedVirtualContact& contact : contacts) {
-    const ContactSample s = sample(scene, contact);
+    const ContactSample s = sample(scene, contact, cache);
     total += s.distance + kNormalWeight * (1.0 - s.cosine);
   }
   return total / static_cast<double>(contacts.size());
@@ -66,11 +97,11 @@ double potentialScale(double distance, double cosine) {
   return std::cos(3.14 * distance / kPotentialRange) + 1.0;
 }
 
-double potentialQualityEnergy(const PlanningScene& scene) {
+double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) {
   const auto& model = scene.hand().model();
   std::vector<std::vector<Vector6>> wrenches;
   for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
-    const ContactSample s = sample(scene, contact);
+    const ContactSample s = sample(scene, contact, cache);
     const double scale = potentialScale(s.distance, s.cosine);
     if (scale <= kPotentialCountThreshold) continue;
     const VirtualContact& source = model.virtualContacts[static_cast<std::size_t>(contact.index)];
@@ -94,20 +125,32 @@ double potentialQualityEnergy(const PlanningScene& scene) {
 
 class ContactEnergy final : public SearchEnergy {
  public:
-  double evaluate(PlanningScene& scene) override { return contactEnergy(scene); }
+  double evaluate(PlanningScene& scene) override { return contactEnergy(scene, cache_); }
+  bool expensive() const override { return false; }
+
+ private:
+  NearestPoints cache_;
 };
 
 class PotentialQualityEnergy final : public SearchEnergy {
  public:
-  double evaluate(PlanningScene& scene) override { return potentialQualityEnergy(scene); }
+  double evaluate(PlanningScene& scene) override { return potentialQualityEnergy(scene, cache_); }
+  bool expensive() const override { return false; }
+
+ private:
+  NearestPoints cache_;
 };
 
 class GuidedPotentialQualityEnergy final : public SearchEnergy {
  public:
   double evaluate(PlanningScene& scene) override {
-    const double quality = potentialQualityEnergy(scene);
-    return quality <= 0.0 ? quality : contactEnergy(scene);
+    const double quality = potentialQualityEnergy(scene, cache_);
+    return quality <= 0.0 ? quality : contactEnergy(scene, cache_);
   }
+  bool expensive() const override { return false; }
+
+ private:
+  NearestPoints cache_;
 };
 
 double autoGraspQuality(PlanningScene& scene) {

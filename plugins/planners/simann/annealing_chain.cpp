@@ -65,25 +65,52 @@ std::vector<double> AnnealingChain::neighbour(double t) {
 bool AnnealingChain::step() {
   const AnnealingParameters& p = settings_.parameters;
   const double tNeighbour =
-      temperature(p.startTemperature, p.neighbourCooling, schedule_step_, p.neighbourDims);
-  std::optional<double> energy;
-  std::vector<double> candidate;
-  for (int attempt = 0; attempt < kNeighbourTries && !energy; ++attempt) {
-    candidate = neighbour(tNeighbour * p.neighbourScale);
-    energy = evaluateState(*scene_, *energy_, candidate);
-  }
-  ++steps_;
-  if (!energy) return false;
-
+      temperature(p.startTemperature, p.neighbourCooling, schedule_step_, p.neighbourDims) *
+      p.neighbourScale;
   const double tAccept =
       temperature(p.startTemperature, p.acceptCooling, schedule_step_, p.acceptDims);
-  const double probability =
-      acceptance(p.energyScale * current_.energy, p.energyScale * *energy, tAccept);
-  const bool jump = probability > uniform();
-  if (jump) current_ = SearchState{std::move(candidate), *energy};
-  ++schedule_step_;
-  if (jump) best_.offer(current_);
-  return true;
+  ++steps_;
+  const bool lazy =
+      settings_.checkCollisionsLast && !energy_->expensive() && energy_->rejectsCollisions();
+  const bool advanced =
+      lazy ? stepCheckingLast(tNeighbour, tAccept) : stepCheckingFirst(tNeighbour, tAccept);
+  if (advanced) ++schedule_step_;
+  return advanced;
+}
+
+// GraspIt!'s order: up to 11 neighbours until a legal one, then the Metropolis test.
+bool AnnealingChain::stepCheckingFirst(double tNeighbour, double tAccept) {
+  const double scale = settings_.parameters.energyScale;
+  for (int attempt = 0; attempt < kNeighbourTries; ++attempt) {
+    std::vector<double> candidate = neighbour(tNeighbour);
+    const std::optional<double> energy = evaluateState(*scene_, *energy_, candidate);
+    if (!energy) continue;
+    if (acceptance(scale * current_.energy, scale * *energy, tAccept) > uniform())
+      moveTo(std::move(candidate), *energy);
+    return true;
+  }
+  return false;
+}
+
+// Evaluate first; only a neighbour the Metropolis test accepts is checked for collisions, and a
+// colliding one is replaced by a new neighbour, as GraspIt! replaces an illegal one.
+bool AnnealingChain::stepCheckingLast(double tNeighbour, double tAccept) {
+  const double scale = settings_.parameters.energyScale;
+  for (int attempt = 0; attempt < kNeighbourTries; ++attempt) {
+    std::vector<double> candidate = neighbour(tNeighbour);
+    scene_->place(candidate);
+    const double energy = energy_->evaluate(*scene_);
+    if (!(acceptance(scale * current_.energy, scale * energy, tAccept) > uniform())) return true;
+    if (scene_->handCollides()) continue;
+    moveTo(std::move(candidate), energy);
+    return true;
+  }
+  return false;
+}
+
+void AnnealingChain::moveTo(std::vector<double> values, double energy) {
+  current_ = SearchState{std::move(values), energy};
+  best_.offer(current_);
 }
 
 void AnnealingChain::runTo(std::int64_t target) {

@@ -20,6 +20,11 @@ struct ChainSettings {
   int bestListSize = 20;
   double distanceThreshold = 0.2;  // GraspIt!'s best-list neighbourhood
   double jumpScale = 1.0;          // multiplies every variable's largest jump
+  // GraspIt! checks a neighbour for collisions before evaluating it. For a cheap energy
+  // (SearchEnergy::expensive() false) the chain may instead evaluate first and check only the
+  // neighbours the Metropolis test would move to; rejected neighbours then cost no collision
+  // check. Off: GraspIt!'s order for every energy.
+  bool checkCollisionsLast = true;
 };
 
 class AnnealingChain {
@@ -41,6 +46,9 @@ class AnnealingChain {
  private:
   double uniform();
   std::vector<double> neighbour(double t);
+  bool stepCheckingFirst(double tNeighbour, double tAccept);
+  bool stepCheckingLast(double tNeighbour, double tAccept);
+  void moveTo(std::vector<double> values, double energy);
 
   std::unique_ptr<PlanningScene> scene_;
   std::unique_ptr<SearchEnergy> energy_;

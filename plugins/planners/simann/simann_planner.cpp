@@ -69,10 +69,16 @@ Settings settingsFrom(const PlanningRequest& request) {
       s.refineEnergy = value;
     else if (key == "refine-jump")
       s.refine.jumpScale = number(key, value, 0.0);
-    else
+    else if (key == "collision-order") {
+      if (value != "graspit" && value != "lazy")
+        throw Error(
+            fmt::format("simann: collision-order '{}' unknown; expected lazy or graspit", value));
+      s.search.checkCollisionsLast = value == "lazy";
+    } else
       throw Error(
           fmt::format("simann: unknown option '{}'; known: preset, mode, threshold, "
-                      "refine-steps, refine-preset, refine-energy, refine-jump",
+                      "refine-steps, refine-preset, refine-energy, refine-jump, "
+                      "collision-order",
                       key));
   }
   return s;

@@ -33,6 +33,10 @@ class SearchEnergy {
   // Whether a colliding hand makes a state illegal (GraspIt!'s compliant and dynamic energies
   // do their own checks).
   virtual bool rejectsCollisions() const { return true; }
+  // Whether one evaluation costs more than a collision check (it closes the hand, or calls
+  // user code). A search checks collisions first for these; for cheap energies it may evaluate
+  // first and check collisions only for states it would move to.
+  virtual bool expensive() const { return true; }
 };
 
 using SearchEnergyFactory = std::function<std::unique_ptr<SearchEnergy>()>;
