@@ -140,7 +140,7 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   cmd->add_option("--mode", options.mode,
                   "simann mode: two-stage (search, then refine each best state with autograsp "
                   "quality) or anneal")
-      ->default_val("two-stage");
+      ->default_val("anneal");
   cmd->add_option("--preset", options.preset,
                   "simann schedule: DEFAULT, LOOP, MODIFIED, STRICT, ONLINE");
   cmd->add_option("--set", options.set, "A planner option KEY=VALUE (repeatable)");

@@ -41,8 +41,7 @@ PlannerProgress progressOf(const Planner& planner, double seconds,
 }
 
 void finishOne(PlanningScene& scene, PlannedGrasp& grasp) {
-  scene.world().setRobotPose(scene.robot(), grasp.pose);
-  scene.world().setDofValues(scene.robot(), grasp.dofs, LimitPolicy::Clamp);
+  scene.setHand(grasp.pose, grasp.dofs);
   const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
   const Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
   grasp.closedDofs = closed.dofValues;

@@ -43,11 +43,14 @@ PlanningScene::PlanningScene(World world, int robot, BodyRef object,
 }
 
 void PlanningScene::place(std::span<const double> values) {
+  setHand(space_->handPose(values), space_->dofs(values));
+}
+
+void PlanningScene::setHand(const Transform& pose, std::span<const double> dofs) {
   const Robot& robot = hand();
   for (int j = 0; j < static_cast<int>(robot.breakaway().size()); ++j)
     if (robot.breakaway()[j].engaged) world_.setBreakaway(robot_, j, BreakawayState{});
-  world_.setRobotPose(robot_, space_->handPose(values));
-  const std::vector<double> dofs = space_->dofs(values);
+  world_.setRobotPose(robot_, pose);
   world_.setDofValues(robot_, dofs, LimitPolicy::Clamp);
 }
 

@@ -52,6 +52,9 @@ class PlanningScene {
 
   // Puts the hand where `values` say (pose and DOFs).
   void place(std::span<const double> values);
+  // Puts the hand at `pose` with `dofs` (clamped into range), every joint re-engaged, so what
+  // an earlier autograsp left behind (broken-away joints) cannot leak into the next state.
+  void setHand(const Transform& pose, std::span<const double> dofs);
   HandConfiguration handConfiguration() const;
   void restore(const HandConfiguration& configuration);
 

@@ -1,0 +1,155 @@
+// The eigengrasp planner on GraspIt!'s plannerMug (axis-angle space, two eigengrasps, 19
+// virtual contacts, DEFAULT schedule from step 30000, as GraspIt! ran it). The counter
+// `x_graspit` is our steps per second over GraspIt!'s own (../shared/reference/
+// graspit-figures.json, planner.*: about 3,000 steps/s with contact energy, 6,800 with
+// potential quality, one thread): above 1 means faster.
+//  - Steps/<energy>/<threads>: simann steps per second (all chains together).
+//    collision-order graspit (every neighbour checked, GraspIt!'s order) runs beside the
+//    default lazy order as the in-process baseline (counter x_graspit_order).
+//  - The cost of one evaluation, split: Place (pose and DOFs, forward kinematics),
+//    HandCollision (hand links against everything), ContactEnergy (19 nearest-point queries),
+//    AutoGrasp (closing the hand), GraspQuality (contacts, L1 hull, epsilon, volume).
+
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include "graspkit/autograsp.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/log.hpp"
+#include "graspkit/planning/planner.hpp"
+#include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/registry.hpp"
+
+namespace fs = std::filesystem;
+using namespace graspkit;
+
+namespace {
+
+constexpr double kGraspItContactStepsPerSecond = 2979.47;  // planner.CONTACT_ENERGY_seed1
+constexpr double kGraspItPotentialStepsPerSecond = 6852.96;
+
+std::shared_ptr<const World> plannerMug() {
+  static std::shared_ptr<const World> world = [] {
+    setWarningHandler([](const SourceLocation&, const std::string&) {});
+    const char* env = std::getenv("GRASPKIT_SHARED");
+    const fs::path shared = env && *env ? fs::path(env) : fs::path(GRASPKIT_SHARED_DEFAULT);
+    const fs::path file = shared / "graspit-data/worlds/plannerMug.xml";
+    return fs::exists(file) ? std::make_shared<const World>(loadWorldFile(file)) : nullptr;
+  }();
+  return world;
+}
+
+PlanningRequest request(const std::string& energy, int threads, const std::string& order) {
+  PlanningRequest r;
+  r.world = plannerMug();
+  r.object = BodyRef::body(0);
+  r.energy = energy;
+  r.threads = threads;
+  r.options = {{"mode", "anneal"}, {"collision-order", order}};
+  return r;
+}
+
+void Steps(benchmark::State& state, const std::string& energy, const std::string& order,
+           double graspit) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found: set GRASPKIT_SHARED");
+  const int threads = state.range(0) == 0
+                          ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
+                          : static_cast<int>(state.range(0));
+  const std::int64_t chunk = energy == "autograsp-quality" ? 20 * threads : 2000 * threads;
+  auto planner = Registry::global().makePlanner("simann", request(energy, threads, order));
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    planner->step(chunk);
+    steps += chunk;
+  }
+  state.counters["threads"] = threads;
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["x_graspit"] =
+      benchmark::Counter(static_cast<double>(steps) / graspit, benchmark::Counter::kIsRate);
+}
+
+// A state from the middle of a contact-energy search: the hand near the mug, not colliding.
+struct Evaluation {
+  std::unique_ptr<PlanningScene> scene;
+  std::vector<double> values;
+};
+
+Evaluation nearState() {
+  auto r = request("contact", 1, "lazy");
+  auto planner = Registry::global().makePlanner("simann", r);
+  planner->step(20000);
+  Evaluation e{makePlanningScene(r, makeSearchSpace(r)), planner->best().front().values};
+  e.scene->place(e.values);
+  return e;
+}
+
+void BM_Place(benchmark::State& state) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found");
+  Evaluation e = nearState();
+  for (auto _ : state) e.scene->place(e.values);
+}
+
+void BM_HandCollision(benchmark::State& state) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found");
+  Evaluation e = nearState();
+  for (auto _ : state) benchmark::DoNotOptimize(e.scene->handCollides());
+}
+
+void BM_ContactEnergy(benchmark::State& state) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found");
+  Evaluation e = nearState();
+  auto energy = Registry::global().makeSearchEnergy("contact");
+  for (auto _ : state) benchmark::DoNotOptimize(energy->evaluate(*e.scene));
+}
+
+void BM_AutoGrasp(benchmark::State& state) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found");
+  Evaluation e = nearState();
+  for (auto _ : state) {
+    e.scene->place(e.values);
+    benchmark::DoNotOptimize(autoGrasp(e.scene->world(), e.scene->robot()));
+  }
+}
+
+void BM_GraspQuality(benchmark::State& state) {
+  if (!plannerMug()) return state.SkipWithError("../shared not found");
+  Evaluation e = nearState();
+  autoGrasp(e.scene->world(), e.scene->robot());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analyzeGrasp(e.scene->world(), e.scene->robot(), e.scene->object()));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(Steps, contact_lazy, "contact", "lazy", kGraspItContactStepsPerSecond)
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(Steps, contact_graspit_order, "contact", "graspit", kGraspItContactStepsPerSecond)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(Steps, potential_quality_lazy, "potential-quality", "lazy",
+                  kGraspItPotentialStepsPerSecond)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(Steps, autograsp_quality, "autograsp-quality", "lazy",
+                  kGraspItContactStepsPerSecond)
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Place)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HandCollision)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ContactEnergy)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AutoGrasp)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GraspQuality)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
