@@ -32,8 +32,8 @@ int count(const std::string& key, const std::string& text) {
     if (used == text.size() && value >= 1 && value <= 1000000) return static_cast<int>(value);
   } catch (const std::exception&) {
   }
-  throw Error(fmt::format("approach: option {} = '{}' is not a whole number in [1, 1000000]", key,
-                          text));
+  throw Error(
+      fmt::format("approach: option {} = '{}' is not a whole number in [1, 1000000]", key, text));
 }
 
 Settings settingsFrom(const PlanningRequest& request) {

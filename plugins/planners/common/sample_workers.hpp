@@ -49,7 +49,8 @@ class SampleWorkers {
         errors[static_cast<std::size_t>(w)] = std::current_exception();
       }
     };
-    const int workers = static_cast<int>(std::min<std::int64_t>(size(), std::max<std::int64_t>(end - begin, 1)));
+    const int workers =
+        static_cast<int>(std::min<std::int64_t>(size(), std::max<std::int64_t>(end - begin, 1)));
     std::vector<std::thread> pool;
     for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
     work(0);

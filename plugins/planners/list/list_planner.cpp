@@ -22,9 +22,9 @@ std::vector<std::vector<double>> requestStates(const PlanningRequest& request,
   for (std::size_t i = 0; i < request.states.size(); ++i) {
     const auto& v = request.states[i].values;
     if (static_cast<int>(v.size()) != space.size())
-      throw Error(fmt::format("list: states[{}] has {} values; the {}/{} space has {}", i,
-                              v.size(), toString(space.positionSpace()),
-                              toString(space.postureSpace()), space.size()));
+      throw Error(fmt::format("list: states[{}] has {} values; the {}/{} space has {}", i, v.size(),
+                              toString(space.positionSpace()), toString(space.postureSpace()),
+                              space.size()));
     values.push_back(v);
   }
   return values;
@@ -42,10 +42,10 @@ std::vector<std::vector<double>> fileStates(const std::string& file, const Searc
       throw Error(fmt::format("list: {}: entry {}: {} DOF values for a hand with {}", file, i,
                               s.dofs.size(), dofCount));
     if (space.positionSpace() == PositionSpace::Ellipsoid)
-      throw Error(fmt::format(
-          "list: {}: the ellipsoid space cannot hold given hand poses; use complete or "
-          "axis-angle",
-          file));
+      throw Error(
+          fmt::format("list: {}: the ellipsoid space cannot hold given hand poses; use complete or "
+                      "axis-angle",
+                      file));
     std::optional<std::vector<double>> encoded = planners::encodeExactly(space, s.pose, s.dofs);
     if (!encoded)
       throw Error(fmt::format(
@@ -68,14 +68,15 @@ class ListPlanner final : public Planner {
       throw Error(fmt::format("list: a best list of {} is not valid", request.bestListSize));
     inputs_ = requestStates(request, *space_);
     for (const auto& [key, value] : request.options) {
-      if (key != "file")
-        throw Error(fmt::format("list: unknown option '{}'; known: file", key));
-      const int dofCount = static_cast<int>(request.world->robot(request.robot).model().dofs.size());
+      if (key != "file") throw Error(fmt::format("list: unknown option '{}'; known: file", key));
+      const int dofCount =
+          static_cast<int>(request.world->robot(request.robot).model().dofs.size());
       for (auto& v : fileStates(value, *space_, dofCount)) inputs_.push_back(std::move(v));
     }
     if (inputs_.empty())
-      throw Error("list: no hand states to evaluate: give the request's states or the option "
-                  "file=FILE");
+      throw Error(
+          "list: no hand states to evaluate: give the request's states or the option "
+          "file=FILE");
     workers_ = std::make_unique<planners::SampleWorkers>(request, space_);
   }
 
