@@ -431,7 +431,15 @@ int run(lua_State* L) {
 std::vector<PlannedGrasp> finishedGrasps(lua_State* L, BoundPlanner& bound, bool autograsp) {
   PlannerCall call(L, bound);
   std::vector<PlannedGrasp> grasps = bound.planner->best();
-  if (autograsp) finishGrasps(bound.request, grasps, bound.request.threads);
+  if (!autograsp) return grasps;
+  // One grasp per finishGrasps call: it closes a list's grasps one after another in one world,
+  // where the breakaway state a closing leaves behind changes how the next grasp closes. Alone,
+  // each grasp closes from the world as the script gave it.
+  for (PlannedGrasp& grasp : grasps) {
+    std::vector<PlannedGrasp> one{std::move(grasp)};
+    finishGrasps(bound.request, one, 1);
+    grasp = std::move(one.front());
+  }
   return grasps;
 }
 
