@@ -21,7 +21,14 @@ int progress(lua_State* L) {
   const double done = toNumber(L, 1);
   const double total = toNumber(L, 2);
   const std::string label = isNone(L, 3) ? "" : toString(L, 3);
-  if (!scriptContext(L).options.showProgress) return 0;
+  drawProgress(L, done, total, label);
+  return 0;
+}
+
+}  // namespace
+
+void drawProgress(lua_State* L, double done, double total, const std::string& label) {
+  if (!scriptContext(L).options.showProgress || isatty(STDERR_FILENO) == 0) return;
   const double fraction = total > 0 ? std::min(1.0, std::max(0.0, done / total)) : 1.0;
   const int width = 30;
   const int filled = static_cast<int>(fraction * width + 0.5);
@@ -29,10 +36,7 @@ int progress(lua_State* L) {
                fraction * 100.0, label.c_str());
   if (done >= total) std::fputc('\n', stderr);
   std::fflush(stderr);
-  return 0;
 }
-
-}  // namespace
 
 int openGraspkitModule(lua_State* L) {
   registerBodyClass(L);
@@ -48,6 +52,7 @@ int openGraspkitModule(lua_State* L) {
   openWorldFunctions(L);
   openPluginFunctions(L);
   openJsonFunctions(L);
+  openPlannerFunctions(L);
   lua_pushstring(L, scriptContext(L).script.string().c_str());
   lua_setfield(L, -2, "script_path");
   lua_pushstring(L, scriptContext(L).scriptFolder.string().c_str());

@@ -3,18 +3,25 @@
 
 #include <lua.hpp>
 
+#include <string>
+
 namespace graspkit::lua {
 
 // Pushes the module table (registering every class's metatable first).
 int openGraspkitModule(lua_State* L);
 
 // Each adds its functions to the module table on top of the stack and registers its classes.
-void openPoseFunctions(lua_State* L);    // pose.cpp
-void openWorldFunctions(lua_State* L);   // world_binding.cpp
-void openPluginFunctions(lua_State* L);  // plugin_binding.cpp
-void openJsonFunctions(lua_State* L);    // json_binding.cpp
-void registerBodyClass(lua_State* L);    // body_binding.cpp
-void registerRobotClass(lua_State* L);   // robot_binding.cpp
-void registerGraspClass(lua_State* L);   // grasp_binding.cpp
+void openPoseFunctions(lua_State* L);     // pose.cpp
+void openWorldFunctions(lua_State* L);    // world_binding.cpp
+void openPluginFunctions(lua_State* L);   // plugin_binding.cpp
+void openJsonFunctions(lua_State* L);     // json_binding.cpp
+void openPlannerFunctions(lua_State* L);  // planner_binding.cpp
+void registerBodyClass(lua_State* L);     // body_binding.cpp
+void registerRobotClass(lua_State* L);    // robot_binding.cpp
+void registerGraspClass(lua_State* L);    // grasp_binding.cpp
+
+// graspkit.progress's bar on stderr: drawn only when the host shows progress (--quiet off) and
+// stderr is a terminal. `done` >= `total` ends the line.
+void drawProgress(lua_State* L, double done, double total, const std::string& label);
 
 }  // namespace graspkit::lua
