@@ -113,7 +113,7 @@ TEST_P(BrokenPlugin, IsRefusedWithAnErrorNamingTheFileAndRegistersNothing) {
 INSTANTIATE_TEST_SUITE_P(
     Corpus, BrokenPlugin,
     ::testing::Values(
-        BrokenCase{"wrong_abi.so", "built for plugin ABI 999, this engine loads ABI 1",
+        BrokenCase{"wrong_abi.so", "built for plugin ABI 999, this engine loads ABI 2",
                    "WrongAbiType"},
         BrokenCase{"wrong_size.so", "descriptor size", "WrongSizeType"},
         BrokenCase{"no_symbol.so", "not a graspkit plugin: no symbol graspkit_plugin_v1", ""},
