@@ -85,7 +85,7 @@ struct PlanOptions {
   std::string energy = "contact";
   std::string space = "axis-angle";
   std::string posture = "eigen";
-  std::string mode = "anneal";
+  std::string mode = "two-stage";
   std::string preset;            // the planner's default when empty
   std::vector<std::string> set;  // KEY=VALUE planner options
   std::optional<std::int64_t> steps;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "graspkit/autograsp.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/planner.hpp"
@@ -140,12 +141,13 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   cmd->add_option("--mode", options.mode,
                   "simann mode: two-stage (search, then refine each best state with autograsp "
                   "quality) or anneal")
-      ->default_val("anneal");
+      ->default_val("two-stage");
   cmd->add_option("--preset", options.preset,
                   "simann schedule: DEFAULT, LOOP, MODIFIED, STRICT, ONLINE");
   cmd->add_option("--set", options.set, "A planner option KEY=VALUE (repeatable)");
-  auto* steps = cmd->add_option("--steps", options.steps,
-                                "Annealing steps in total (GraspIt!'s usual run is 40000)");
+  auto* steps = cmd->add_option(
+      "--steps", options.steps,
+      "Annealing steps in total (default 5000 in two-stage mode, else GraspIt!'s 40000)");
   cmd->add_option("--seconds", options.seconds, "Plan for this long instead of a step count")
       ->excludes(steps);
   cmd->add_option("--threads", options.threads, "Search threads (default: every core)");
@@ -183,7 +185,9 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
   if (options.seconds)
     budget.seconds = *options.seconds;
   else
-    budget.steps = options.steps.value_or(40000);
+    // Two-stage: a short, still-warm search gives more varied seeds to refine (measured: more
+    // force-closure grasps per second than GraspIt!'s 40000 steps).
+    budget.steps = options.steps.value_or(options.mode == "two-stage" ? 5000 : 40000);
   budget.progress = terminalProgress(quiet);
   PlanningRun run = runPlanner(*planner, budget);
   if (budget.progress) std::cerr << "\n";

@@ -94,8 +94,10 @@ void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& gra
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
   auto work = [&](int w) {
     try {
-      auto scene = makePlanningScene(request, space);
-      for (std::size_t i = next++; i < grasps.size(); i = next++) finishOne(*scene, grasps[i]);
+      // A fresh clone per grasp: nothing one autograsp leaves in the world (broken-away
+      // joints, anything a robot type keeps) may change the next grasp's measure.
+      for (std::size_t i = next++; i < grasps.size(); i = next++)
+        finishOne(*makePlanningScene(request, space), grasps[i]);
     } catch (...) {
       errors[static_cast<std::size_t>(w)] = std::current_exception();
     }

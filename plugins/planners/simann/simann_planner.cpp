@@ -113,6 +113,12 @@ class SimAnnPlanner final : public Planner {
       throw Error(fmt::format("simann: {} threads is not valid", request.threads));
     if (request.bestListSize < 1)
       throw Error(fmt::format("simann: a best list of {} is not valid", request.bestListSize));
+    if (settings_.twoStage) {
+      PlanningRequest stage = request;
+      stage.energy = settings_.refineEnergy;
+      stage.customEnergy = nullptr;
+      makeSearchEnergy(stage);  // an unknown refine-energy fails now, not after the search
+    }
     for (int c = 0; c < request.threads; ++c) {
       auto scene = makePlanningScene(request, space_);
       SearchState start = request.states.empty() ? startState(*scene) : request.states.front();
