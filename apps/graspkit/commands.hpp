@@ -85,7 +85,7 @@ struct PlanOptions {
   std::string energy = "contact";
   std::string space = "axis-angle";
   std::string posture = "eigen";
-  std::string mode = "two-stage";
+  std::string mode = "restarts";
   std::string preset;            // the planner's default when empty
   std::vector<std::string> set;  // KEY=VALUE planner options
   std::optional<std::int64_t> steps;
@@ -99,7 +99,8 @@ struct PlanOptions {
 
 void addPlanCommand(CLI::App& app, PlanOptions& options);
 // Prints the best grasps as a table (or JSON); with --out also writes the JSON and one world
-// file per grasp. Progress goes to stderr when it is a terminal.
+// file per grasp. Progress goes to stderr: a redrawn line with percentage and ETA on a
+// terminal, a plain line every few seconds otherwise (unless quiet).
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out);
 
 // The options every command that loads files shares: --root and --generic-robots.

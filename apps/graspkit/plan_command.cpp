@@ -18,12 +18,19 @@
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/registry.hpp"
+#include "graspkit/version.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
 
 namespace graspkit::cli {
 namespace {
 
 using nlohmann::json;
+
+// The default budget: GraspIt!'s search length (its planner's 40000 annealing steps).
+constexpr std::int64_t kDefaultSteps = 40000;
+// The layout of the plan JSON; raised whenever a field changes meaning or goes away.
+constexpr int kPlanSchemaVersion = 2;
 
 BodyRef objectToGrasp(const World& world, const std::string& name) {
   const auto& bodies = world.bodies();
@@ -48,18 +55,53 @@ std::map<std::string, std::string> plannerOptions(const PlanOptions& options) {
   return result;
 }
 
-json graspJson(const PlannedGrasp& g) {
-  const Quaternion q(g.pose.rotation());
-  const Vector3 t = g.pose.translation();
-  return {{"translation", {t.x(), t.y(), t.z()}},
-          {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-          {"dofs", g.dofs},
-          {"closed_dofs", g.closedDofs},
-          {"energy", g.energy},
-          {"epsilon", g.epsilon},
-          {"volume", g.volume},
-          {"contacts", g.contacts},
-          {"force_closure", g.forceClosure}};
+json poseJson(const Transform& pose) {
+  const Quaternion q(pose.rotation());
+  const Vector3 t = pose.translation();
+  return {{"translation", {t.x(), t.y(), t.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+json vectorJson(const Vector3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+// A contact of the closed hand, in the object's frame: the point on the object and the normal
+// pointing into the object (the direction the hand pushes), and which hand link touches.
+json contactJson(const World& world, const Transform& objectPose, const Contact& contact) {
+  const Transform toObject = objectPose.inverse();
+  json link = "palm";
+  if (contact.body1.kind == BodyRef::Kind::Link && !contact.body1.link.isBase())
+    link = {contact.body1.link.chain, contact.body1.link.link};
+  (void)world;
+  return {{"link", link},
+          {"point", vectorJson(toObject * contact.position2)},
+          {"normal", vectorJson(-(toObject.linear() * contact.normal))},
+          {"mu", contact.mu}};
+}
+
+json graspJson(const World& world, const Transform& objectPose, const PlannedGrasp& g) {
+  const Transform toObject = objectPose.inverse();
+  const json open = poseJson(g.pose);
+  json grasp = {{"translation", open["translation"]},
+                {"quaternion", open["quaternion"]},
+                {"dofs", g.dofs},
+                {"pose", {{"world", open}, {"object", poseJson(toObject * g.pose)}}},
+                {"open_dofs", g.dofs},
+                {"energy", g.energy},
+                {"evaluated", g.evaluated}};
+  if (!g.evaluated) return grasp;
+  json contacts = json::array();
+  for (const Contact& c : g.contactList) contacts.push_back(contactJson(world, objectPose, c));
+  grasp.update(
+      {{"closed_pose",
+        {{"world", poseJson(g.closed.pose)}, {"object", poseJson(toObject * g.closed.pose)}}},
+       {"closed_dofs", g.closed.dofs},
+       {"epsilon", g.epsilon},
+       {"volume", g.volume},
+       {"contacts", g.contacts},
+       {"contact_points", contacts},
+       {"force_closure", g.forceClosure}});
+  return grasp;
 }
 
 void printTable(const json& result, std::ostream& out) {
@@ -88,31 +130,104 @@ void printTable(const json& result, std::ostream& out) {
   }
 }
 
-// One world file per grasp beside `out`: <stem>_<rank>.xml with the hand closed on the object.
-json saveWorlds(const World& world, int robot, const std::vector<PlannedGrasp>& grasps,
-                const std::filesystem::path& out) {
-  json files = json::array();
-  const auto folder = out.parent_path();
-  for (std::size_t i = 0; i < grasps.size(); ++i) {
-    World copy = world.clone();
-    copy.setRobotPose(robot, grasps[i].pose);
-    copy.setDofValues(robot, grasps[i].closedDofs.empty() ? grasps[i].dofs : grasps[i].closedDofs,
-                      LimitPolicy::Ignore);
-    const auto file = folder / fmt::format("{}_{:02}.xml", out.stem().string(), i + 1);
-    saveWorldFile(copy, file);
-    files.push_back(file.string());
-  }
-  return files;
+// The files --out writes: <out> (the JSON) and beside it <stem>_<rank>.xml per grasp.
+std::filesystem::path worldFileFor(const std::filesystem::path& out, std::size_t rank) {
+  return out.parent_path() / fmt::format("{}_{:02}.xml", out.stem().string(), rank);
 }
 
-std::function<bool(const PlannerProgress&)> terminalProgress(bool quiet) {
-  if (quiet || !isatty(STDERR_FILENO)) return {};
+// Refuses an --out that cannot be written before any planning is done: a folder, a missing
+// parent folder, or one where a file cannot be created.
+void checkOut(const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  if (out.empty()) return;
+  if (!out.has_filename() || fs::is_directory(out))
+    throw Error(fmt::format("--out: '{}' is a folder; give a file name such as {}/plan.json",
+                            out.string(), out.string()));
+  const fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(folder))
+    throw Error(fmt::format("--out: the folder '{}' does not exist", folder.string()));
+  const fs::path probe = folder / fmt::format(".{}.probe{}", out.filename().string(), ::getpid());
+  {
+    std::ofstream file(probe);
+    if (!file) throw Error(fmt::format("--out: cannot write in '{}'", folder.string()));
+  }
+  fs::remove(probe);
+}
+
+// Writes `text` to `file` through a temporary file and a rename: never half a file.
+void writeAtomically(const std::filesystem::path& file, const std::string& text) {
+  const std::filesystem::path temporary = file.string() + fmt::format(".tmp{}", ::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::filesystem::remove(temporary);
+      throw Error(fmt::format("--out: writing {} failed", file.string()));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, file, ec);
+  if (ec) {
+    std::filesystem::remove(temporary);
+    throw Error(fmt::format("--out: cannot write {}: {}", file.string(), ec.message()));
+  }
+}
+
+// One world per grasp (graspWorld: the hand closed as the plan measured it, breakaway state
+// included), then the JSON. On any failure the files already written are removed.
+void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& grasps, json& result,
+             const std::filesystem::path& out) {
+  std::vector<std::filesystem::path> written;
+  try {
+    json files = json::array();
+    for (std::size_t i = 0; i < grasps.size(); ++i) {
+      const auto file = worldFileFor(out, i + 1);
+      saveWorldFile(graspWorld(request, grasps[i]), file);
+      written.push_back(file);
+      files.push_back(file.string());
+    }
+    result["world_files"] = files;
+    writeAtomically(out, result.dump(2) + "\n");
+  } catch (...) {
+    for (const auto& file : written) std::filesystem::remove(file);
+    throw;
+  }
+}
+
+std::string duration(double seconds) {
+  if (!(seconds >= 0) || seconds > 359999) return "--:--";
+  const int s = static_cast<int>(std::lround(seconds));
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+                   : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+std::string progressText(const PlannerProgress& p) {
+  const double eta = p.fraction > 0 ? p.seconds * (1.0 - p.fraction) / p.fraction : -1.0;
+  std::string text = fmt::format("{:>3.0f}%  {} steps  {} elapsed, {} left", 100.0 * p.fraction,
+                                 p.steps, duration(p.seconds), duration(eta));
+  if (p.forceClosure >= 0)
+    text += fmt::format("  {} grasps, {} force closure", p.states, p.forceClosure);
+  else
+    text += fmt::format("  {} states, best energy {:.5g}", p.states, p.bestEnergy);
+  return text;
+}
+
+// On a terminal: one line redrawn about 4 times a second. Otherwise (a CI log): a plain line
+// every 5 seconds and one at the end.
+std::function<bool(const PlannerProgress&)> planProgress(bool quiet, double& reportEvery) {
+  if (quiet) return {};
+  if (isatty(STDERR_FILENO)) {
+    reportEvery = 0.25;
+    return [](const PlannerProgress& p) {
+      std::cerr << "\r  " << fmt::format("{:<78}", progressText(p)) << std::flush;
+      if (p.fraction >= 1.0) std::cerr << "\n";
+      return true;
+    };
+  }
+  reportEvery = 5.0;
   return [](const PlannerProgress& p) {
-    const double rate = p.seconds > 0 ? static_cast<double>(p.steps) / p.seconds : 0.0;
-    std::cerr << fmt::format(
-                     "\r  {:>9} steps  best energy {:<10.5g} {:>3} states  {:>8.0f} steps/s",
-                     p.steps, p.bestEnergy, p.states, rate)
-              << std::flush;
+    std::cerr << "plan: " << progressText(p) << "\n" << std::flush;
     return true;
   };
 }
@@ -139,16 +254,17 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   cmd->add_option("--posture", options.posture, "Posture space: eigen or dof")
       ->default_val("eigen");
   cmd->add_option("--mode", options.mode,
-                  "simann mode: two-stage (search, then refine each best state with autograsp "
-                  "quality) or anneal")
-      ->default_val("two-stage");
+                  "simann mode: restarts (many short searches, each closing its best states; "
+                  "any-time) or anneal (GraspIt!'s single search)")
+      ->default_val("restarts");
   cmd->add_option("--preset", options.preset,
                   "simann schedule: DEFAULT, LOOP, MODIFIED, STRICT, ONLINE");
   cmd->add_option("--set", options.set, "A planner option KEY=VALUE (repeatable)");
   auto* steps = cmd->add_option(
       "--steps", options.steps,
-      "Annealing steps in total (default 5000 in two-stage mode, else GraspIt!'s 40000)");
-  cmd->add_option("--seconds", options.seconds, "Plan for this long instead of a step count")
+      "Steps in total, every stage included (default 40000: GraspIt!'s search length)");
+  cmd->add_option("--seconds", options.seconds,
+                  "Plan for this long (every stage included) instead of a step count")
       ->excludes(steps);
   cmd->add_option("--threads", options.threads, "Search threads (default: every core)");
   cmd->add_option("--seed", options.seed, "Random seed")->default_val(1);
@@ -157,10 +273,12 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
       ->check(CLI::Range(1, 10000));
   cmd->add_flag("--json", options.json, "Print one JSON object");
   cmd->add_option("--out", options.out,
-                  "Write the JSON here, and beside it one world file per grasp");
+                  "Write the JSON here, and beside it one world file per grasp (the hand "
+                  "closed as measured)");
 }
 
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
+  checkOut(options.out);
   auto world = std::make_shared<World>(loadWorldFile(
       options.world,
       LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots}));
@@ -180,43 +298,65 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
   request.options = plannerOptions(options);
   Registry::global().makeSearchEnergy(request.energy);  // an unknown name fails before planning
 
+  // A hand without virtual contacts plans on contacts derived from its geometry: say so.
+  const Robot& handRobot = world->robot(request.robot);
+  const bool derived = handRobot.model().virtualContacts.empty();
+  const std::size_t contactCount =
+      derived ? deriveVirtualContacts(handRobot).size() : handRobot.model().virtualContacts.size();
+  if (derived && !quiet)
+    std::cerr << fmt::format(
+        "graspkit: note: {} has no virtual contacts; the planner uses {} derived from its "
+        "geometry and closing motion (one per moving link's pad, one on the palm)\n",
+        handRobot.name(), contactCount);
+  if (derived && contactCount == 0)
+    throw Error(
+        fmt::format("{} has no virtual contacts and none could be derived from its "
+                    "geometry: no link moves when it closes",
+                    handRobot.name()));
+
   auto planner = Registry::global().makePlanner(options.planner, request);
   PlanningBudget budget;
   if (options.seconds)
     budget.seconds = *options.seconds;
   else
-    // Two-stage: a short, still-warm search gives more varied seeds to refine (measured: more
-    // force-closure grasps per second than GraspIt!'s 40000 steps).
-    budget.steps = options.steps.value_or(options.mode == "two-stage" ? 5000 : 40000);
-  budget.progress = terminalProgress(quiet);
+    budget.steps = options.steps.value_or(kDefaultSteps);
+  budget.progress = planProgress(quiet, budget.reportEvery);
   PlanningRun run = runPlanner(*planner, budget);
-  if (budget.progress) std::cerr << "\n";
   finishGrasps(request, run.grasps, request.threads);
 
-  json result = {{"world", options.world.string()},
-                 {"object", world->bodies()[static_cast<std::size_t>(request.object.index)].name},
+  const Body& object = world->bodies()[static_cast<std::size_t>(request.object.index)];
+  const WorldRobot& hand = world->worldRobot(request.robot);
+  json result = {{"schema_version", kPlanSchemaVersion},
+                 {"engine_version", engineVersion()},
+                 {"world", options.world.string()},
+                 {"object", object.name},
+                 {"object_file", object.model->file.string()},
+                 {"object_pose", poseJson(object.pose)},
+                 {"robot", hand.robot.name()},
+                 {"robot_file", hand.robot.model().file.string()},
+                 {"virtual_contacts", {{"count", contactCount}, {"derived", derived}}},
                  {"planner", options.planner},
+                 {"mode", request.options.count("mode") ? request.options.at("mode") : ""},
                  {"energy", canonicalEnergyName(request.energy)},
                  {"space", toString(request.position)},
+                 {"posture", toString(request.posture)},
                  {"steps", run.steps},
                  {"seconds", run.seconds},
                  {"steps_per_second", run.seconds > 0 ? run.steps / run.seconds : 0.0},
                  {"seed", request.seed},
                  {"threads", request.threads},
                  {"grasps", json::array()}};
+  if (budget.seconds)
+    result["budget"] = {{"seconds", *budget.seconds}};
+  else
+    result["budget"] = {{"steps", *budget.steps}};
   int forceClosure = 0;
   for (const PlannedGrasp& g : run.grasps) {
-    result["grasps"].push_back(graspJson(g));
+    result["grasps"].push_back(graspJson(*world, object.pose, g));
     forceClosure += g.forceClosure ? 1 : 0;
   }
   result["force_closure_count"] = forceClosure;
-  if (!options.out.empty()) {
-    result["world_files"] = saveWorlds(*world, request.robot, run.grasps, options.out);
-    std::ofstream file(options.out);
-    if (!file) throw Error(fmt::format("--out: cannot write {}", options.out.string()));
-    file << result.dump(2) << "\n";
-    if (!file) throw Error(fmt::format("--out: writing {} failed", options.out.string()));
-  }
+  if (!options.out.empty()) saveOut(request, run.grasps, result, options.out);
   if (options.json)
     out << result.dump(2) << "\n";
   else

@@ -341,7 +341,10 @@ int newPlanner(lua_State* L) {
 
 // ---- Planner methods ----
 
-void pushGrasps(lua_State* L, const std::vector<PlannedGrasp>& grasps) {
+// Each grasp as a table; a closed one also carries `world`, a World with the hand closed as
+// measured (breakaway state included), ready for world:save.
+void pushGrasps(lua_State* L, const PlanningRequest& request,
+                const std::vector<PlannedGrasp>& grasps) {
   lua_createtable(L, static_cast<int>(grasps.size()), 0);
   for (std::size_t i = 0; i < grasps.size(); ++i) {
     const PlannedGrasp& g = grasps[i];
@@ -355,7 +358,7 @@ void pushGrasps(lua_State* L, const std::vector<PlannedGrasp>& grasps) {
     lua_pushnumber(L, g.energy);
     lua_setfield(L, -2, "energy");
     if (g.evaluated) {
-      pushNumberList(L, g.closedDofs);
+      pushNumberList(L, g.closed.dofs);
       lua_setfield(L, -2, "closed_dofs");
       lua_pushnumber(L, g.epsilon);
       lua_setfield(L, -2, "epsilon");
@@ -365,6 +368,10 @@ void pushGrasps(lua_State* L, const std::vector<PlannedGrasp>& grasps) {
       lua_setfield(L, -2, "contacts");
       lua_pushboolean(L, g.forceClosure);
       lua_setfield(L, -2, "force_closure");
+      auto closed = std::make_shared<ScriptWorld>();
+      closed->world = graspWorld(request, g);
+      pushWorld(L, std::move(closed));
+      lua_setfield(L, -2, "world");
     }
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
@@ -450,7 +457,7 @@ std::vector<PlannedGrasp> finishedGrasps(lua_State* L, BoundPlanner& bound, bool
 int best(lua_State* L) {
   BoundPlanner& bound = toPlanner(L, 1);
   const OptionsTable options(L, 2, {"autograsp"});
-  pushGrasps(L, finishedGrasps(L, bound, options.boolean("autograsp", false)));
+  pushGrasps(L, bound.request, finishedGrasps(L, bound, options.boolean("autograsp", false)));
   return 1;
 }
 
@@ -462,7 +469,7 @@ int finish(lua_State* L) {
     PlannerCall call(L, bound);
     bound.planner->finish();
   }
-  pushGrasps(L, finishedGrasps(L, bound, true));
+  pushGrasps(L, bound.request, finishedGrasps(L, bound, true));
   return 1;
 }
 

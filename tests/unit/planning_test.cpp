@@ -11,9 +11,12 @@
 // - Contact energy: the nearest object point found by brute force over the mug's triangles.
 // - Planned grasps: re-placed and re-measured in a fresh clone of the world.
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <random>
 #include <string>
@@ -28,6 +31,7 @@
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/best_list.hpp"
+#include "graspkit/planning/distinct_grasps.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/planning_scene.hpp"
@@ -35,6 +39,7 @@
 #include "graspkit/planning/search_space.hpp"
 #include "graspkit/registry.hpp"
 #include "graspkit/robot.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
 #include "test_paths.hpp"
 
@@ -155,7 +160,8 @@ TEST(EigengraspMap, BarrettDofsClampToTheirLimits) {
 
 TEST(EigengraspMap, RobotWithoutAFileHasIdentityEigengrasps) {
   // models/robots/parallel_jaw: one prismatic DOF in [0, 40] mm and no <eigenGrasps>: one
-  // eigengrasp per DOF, origin at the middle of the range.
+  // eigengrasp per DOF, origin at the middle of the range, amplitude spanning the DOF's range
+  // (-20 .. 20 mm about the origin at 20), so the search can open and close the jaw fully.
   const auto jaw = loadRobotFile(test::modelsDir() / "robots/parallel_jaw/parallel_jaw.xml");
   ASSERT_EQ(jaw->dofs.size(), 1u);
   ASSERT_EQ(jaw->dofs[0].min, 0.0);
@@ -166,6 +172,8 @@ TEST(EigengraspMap, RobotWithoutAFileHasIdentityEigengrasps) {
   EXPECT_DOUBLE_EQ(map.dofs(Eigen::VectorXd::Constant(1, -4.0))[0], 16.0);
   EXPECT_DOUBLE_EQ(map.amplitudes(Eigen::VectorXd::Constant(1, 35.0))[0], 15.0);
   EXPECT_DOUBLE_EQ(map.dofs(Eigen::VectorXd::Constant(1, 30.0))[0], 40.0);  // clamped
+  EXPECT_DOUBLE_EQ(map.minAmplitude(0), -20.0);
+  EXPECT_DOUBLE_EQ(map.maxAmplitude(0), 20.0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -744,27 +752,105 @@ Grasp remeasure(const World& world, const BodyRef& object, const PlannedGrasp& g
   return analyzeGrasp(clone, 0, object);
 }
 
-TEST_F(SimAnn, TwoStageFindsForceClosureGrasps) {
-  // Over three seeds, at least one force-closure grasp (GraspIt!'s single search found 2 in
-  // 340 autograsped states); seeds 1, 2, 3 gave 6, 0 and 2 when this was written.
-  int closures = 0;
-  for (std::uint64_t seed : {1u, 2u, 3u}) {
-    SCOPED_TRACE(seed);
-    PlanningRequest request = mugRequest(world_);
-    request.seed = seed;
-    request.threads = 2;
-    request.options = {{"mode", "two-stage"}};
-    auto grasps = plan(request, 5000);
-    ASSERT_FALSE(grasps.empty());
-    for (std::size_t i = 0; i < grasps.size(); ++i) {
-      const Grasp fresh = remeasure(*world_, request.object, grasps[i]);
-      if (fresh.forceClosure && fresh.epsilon > 1e-6) ++closures;
-      // The refinement's energy is autograsp quality: -(30 volume + 100 max(epsilon, 0)).
-      EXPECT_NEAR(grasps[i].energy, -(30 * fresh.volume + 100 * std::max(fresh.epsilon, 0.0)), 1e-9)
-          << i;
-    }
+PlanningRequest restartRequest(std::shared_ptr<const World> world, std::uint64_t seed,
+                               int threads) {
+  PlanningRequest request = mugRequest(std::move(world));
+  request.seed = seed;
+  request.threads = threads;
+  request.options = {{"mode", "restarts"}};
+  return request;
+}
+
+int forceClosureCount(const std::vector<PlannedGrasp>& grasps) {
+  return static_cast<int>(std::count_if(grasps.begin(), grasps.end(),
+                                        [](const PlannedGrasp& g) { return g.forceClosure; }));
+}
+
+// Every grasp a restarts plan returns is closed and measured, and ranked by that measure; a
+// fresh clone closed from the grasp's pre-grasp state by hand measures the same.
+TEST_F(SimAnn, RestartsReturnClosedGraspsRankedByQuality) {
+  const auto request = restartRequest(world_, 1, 2);
+  const auto grasps = plan(request, 5000);
+  ASSERT_FALSE(grasps.empty());
+  // GraspIt!'s single search found 2 force-closure grasps in 340 autograsped states.
+  EXPECT_GE(forceClosureCount(grasps), 5);
+  for (std::size_t i = 0; i < grasps.size(); ++i) {
+    SCOPED_TRACE(i);
+    ASSERT_TRUE(grasps[i].evaluated);
+    if (i > 0) EXPECT_FALSE(betterGrasp(grasps[i], grasps[i - 1]));
+    const Grasp fresh = remeasure(*world_, request.object, grasps[i]);
+    EXPECT_EQ(grasps[i].contacts, static_cast<int>(fresh.contacts.size()));
+    EXPECT_NEAR(grasps[i].epsilon, fresh.epsilon, 1e-9);
+    EXPECT_EQ(grasps[i].forceClosure, fresh.forceClosure);
   }
-  EXPECT_GE(closures, 1);
+}
+
+// The bug: saved grasps lost the breakaway state autograsp left, and reloaded with the hand
+// inside the mug. The world graspWorld() gives, saved and loaded back, measures the same.
+TEST_F(SimAnn, SavedGraspWorldsReloadToTheSameGrasp) {
+  const auto request = restartRequest(world_, 2, 2);
+  const auto grasps = plan(request, 3000);
+  ASSERT_FALSE(grasps.empty());
+  const auto folder =
+      std::filesystem::temp_directory_path() / ("graspkit_reload_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  LoadOptions load;
+  load.roots = {*test::graspitDataDir()};
+  int broken = 0;
+  for (std::size_t i = 0; i < grasps.size(); ++i) {
+    SCOPED_TRACE(i);
+    const auto file = folder / ("grasp_" + std::to_string(i) + ".xml");
+    saveWorldFile(graspWorld(request, grasps[i]), file);
+    const World loaded = loadWorldFile(file, load);
+    const Robot& hand = loaded.robot(request.robot);
+    for (const BreakawayState& b : hand.breakaway()) broken += b.engaged ? 1 : 0;
+    const Grasp again = analyzeGrasp(loaded, request.robot, request.object);
+    EXPECT_EQ(static_cast<int>(again.contacts.size()), grasps[i].contacts);
+    EXPECT_NEAR(again.epsilon, grasps[i].epsilon,
+                1e-6 * std::max(1.0, std::abs(grasps[i].epsilon)));
+    EXPECT_NEAR(again.volume, grasps[i].volume, 1e-6 * std::max(1.0, grasps[i].volume));
+    EXPECT_EQ(again.forceClosure, grasps[i].forceClosure);
+  }
+  // The check means something only if some Barrett finger broke away.
+  EXPECT_GT(broken, 0);
+  std::filesystem::remove_all(folder);
+}
+
+// More budget runs the same restarts and more: force-closure grasps and the best epsilon never
+// fall as the budget grows (they fell from 6 to 0 with the old two-stage search).
+TEST_F(SimAnn, MoreBudgetNeverFindsFewerForceClosureGrasps) {
+  int previous = -1;
+  double best = -1.0;
+  for (std::int64_t steps : {1000, 4000, 10000}) {
+    SCOPED_TRACE(steps);
+    const auto grasps = plan(restartRequest(world_, 3, 2), steps);
+    ASSERT_FALSE(grasps.empty());
+    EXPECT_GE(forceClosureCount(grasps), previous);
+    EXPECT_GE(grasps.front().epsilon, best);
+    previous = forceClosureCount(grasps);
+    best = grasps.front().epsilon;
+  }
+  EXPECT_GE(previous, 5);
+}
+
+// A step budget is a number of restarts, shared out among the threads: the thread count
+// changes the speed, not the grasps.
+TEST_F(SimAnn, RestartsGiveTheSameGraspsForEveryThreadCount) {
+  const auto one = plan(restartRequest(world_, 4, 1), 2500);
+  const auto two = plan(restartRequest(world_, 4, 2), 2500);
+  expectSameGrasps(one, two);
+  for (std::size_t i = 0; i < std::min(one.size(), two.size()); ++i)
+    EXPECT_EQ(one[i].epsilon, two[i].epsilon) << i;
+}
+
+// A time budget covers every stage: the run returns close to it.
+TEST_F(SimAnn, SecondsBudgetIsKept) {
+  auto planner = Registry::global().makePlanner("simann", restartRequest(world_, 5, 2));
+  PlanningBudget budget;
+  budget.seconds = 2.0;
+  const PlanningRun run = runPlanner(*planner, budget);
+  EXPECT_LT(run.seconds, 2.0 * 1.05 + 0.1);  // one autograsp of slack on a busy machine
+  EXPECT_FALSE(run.grasps.empty());
 }
 
 // finishGrasps() closes every grasp in one reused scene per thread. Each grasp must be measured
@@ -776,7 +862,7 @@ TEST_F(SimAnn, FinishGraspsMeasuresEachGraspAsAFreshWorldWould) {
   request.seed = 3;
   request.threads = 1;
   request.bestListSize = 6;
-  request.options = {{"mode", "two-stage"}};
+  request.options = {{"mode", "anneal"}};
   auto grasps = plan(request, 2000);
   ASSERT_GE(grasps.size(), 2u);
   finishGrasps(request, grasps, 1);
@@ -824,6 +910,16 @@ TEST_F(SimAnn, BadRequestsAreRefusedClearly) {
   }
   {
     PlanningRequest r = base;
+    r.options = {{"mode", "restarts"}, {"start", "nowhere"}};
+    expectRefused(r, "start 'nowhere'");
+  }
+  {
+    PlanningRequest r = base;
+    r.options = {{"mode", "restarts"}, {"restart-steps", "2.5"}};
+    expectRefused(r, "restart-steps");
+  }
+  {
+    PlanningRequest r = base;
     r.options["threshold"] = "-1";
     expectRefused(r, "threshold");
   }
@@ -840,17 +936,101 @@ TEST_F(SimAnn, BadRequestsAreRefusedClearly) {
   EXPECT_THROW(Registry::global().makePlanner("no-such-planner", base), Error);
 }
 
-// A two-stage request naming an unknown refinement energy must be refused when the planner is
-// made, like an unknown search energy, not after the whole search has spent its budget.
+// A restarts request naming an unknown refinement energy must be refused when the planner is
+// made, like an unknown search energy, not after the search has spent its budget.
 TEST_F(SimAnn, UnknownRefineEnergyIsRefusedBeforeTheSearch) {
   PlanningRequest r = annealRequest(world_, 1, 1);
-  r.options = {{"mode", "two-stage"}, {"refine-energy", "no-such-energy"}};
+  r.options = {{"mode", "restarts"}, {"refine-steps", "5"}, {"refine-energy", "no-such-energy"}};
   try {
     Registry::global().makePlanner("simann", r);
     ADD_FAILURE() << "an unknown refine-energy is accepted until the search has run";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no-such-energy"), std::string::npos) << e.what();
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hands without virtual contacts
+
+// models/worlds/gripper_box.xml: the parallel jaw (no virtual-contact file) centred over the box,
+// its approach direction down, jaws open: inner faces at x = +-40 mm, finger pads centred 30 mm
+// below the palm face (z = 131 - 31 = 100), palm face at z = 131 (the model file's comments).
+TEST(DerivedVirtualContacts, ParallelJawPadsAndPalmByHand) {
+  const World world = loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml");
+  ASSERT_TRUE(world.robot(0).model().virtualContacts.empty());
+  const auto derived = deriveVirtualContacts(world.robot(0));
+  ASSERT_EQ(derived.size(), 3u);
+  EXPECT_EQ(derived[0].finger, -1);  // the palm first
+  PlanningRequest request;
+  request.world = std::make_shared<World>(world);
+  request.object = BodyRef::body(1);
+  auto scene = makePlanningScene(request, makeSearchSpace(request));
+  ASSERT_TRUE(scene->virtualContactsDerived());
+  const auto placed = scene->virtualContacts();
+  ASSERT_EQ(placed.size(), 3u);
+  EXPECT_TRUE(placed[0].point.isApprox(Vector3(0, 0, 131), 1e-9)) << placed[0].point.transpose();
+  EXPECT_TRUE(placed[0].normal.isApprox(Vector3(0, 0, -1), 1e-9));
+  for (int f : {1, 2}) {
+    const double side = placed[f].point.x() > 0 ? 1.0 : -1.0;
+    EXPECT_NEAR(std::abs(placed[f].point.x()), 40.0, 1e-9);
+    EXPECT_NEAR(placed[f].point.z(), 100.0, 1e-9);
+    EXPECT_TRUE(placed[f].normal.isApprox(Vector3(-side, 0, 0), 1e-9)) << f;  // facing the box
+  }
+  // The contact energy is no longer 0 everywhere: the palm 11 mm above the box top, the pads
+  // 10 mm from its faces, all facing it: (11 + 10 + 10) / 3.
+  auto energy = Registry::global().makeSearchEnergy("contact");
+  EXPECT_NEAR(energy->evaluate(*scene), 31.0 / 3.0, 1e-6);
+}
+
+// The plan of a hand without virtual contacts finds force closure; GraspIt!'s start state there
+// closes to epsilon 0.307, and a plan never does worse than its start.
+TEST(DerivedVirtualContacts, GripperBoxPlansForceClosure) {
+  auto world =
+      std::make_shared<World>(loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml"));
+  PlanningRequest request;
+  request.world = world;
+  request.object = BodyRef::body(1);
+  request.threads = 2;
+  request.options = {{"mode", "restarts"}};
+  const auto grasps = plan(request, 20000);
+  ASSERT_FALSE(grasps.empty());
+  EXPECT_TRUE(grasps.front().forceClosure);
+  EXPECT_GT(grasps.front().epsilon, 0.3);
+  for (const PlannedGrasp& g : grasps) EXPECT_LT(g.energy, 1e5);  // evaluated, never a silent 0
+}
+
+// ---------------------------------------------------------------------------------------------
+// DistinctGrasps
+
+TEST(DistinctGrasps, ForceClosureCountAndBestEpsilonNeverFall) {
+  // States on a line, distance = |a - b|, threshold 1: random offers of random quality.
+  DistinctGrasps kept(1.0, [](std::span<const double> a, std::span<const double> b) {
+    return std::abs(a[0] - b[0]);
+  });
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> where(0.0, 30.0), quality(-0.5, 0.5);
+  int previousCount = 0;
+  double previousBest = -1.0;
+  for (int i = 0; i < 2000; ++i) {
+    PlannedGrasp g;
+    g.values = {where(random)};
+    g.evaluated = true;
+    g.epsilon = quality(random);
+    g.forceClosure = g.epsilon > 0;
+    if (!g.forceClosure) g.epsilon = -1.0;
+    kept.offer(g);
+    ASSERT_GE(kept.forceClosureCount(), previousCount);
+    const auto top = kept.best(5);
+    ASSERT_GE(top.front().epsilon, previousBest);
+    previousCount = kept.forceClosureCount();
+    previousBest = top.front().epsilon;
+    // No two kept grasps within the threshold.
+    const auto all = kept.best(kept.size());
+    for (std::size_t a = 0; a < all.size(); ++a)
+      for (std::size_t b = a + 1; b < all.size(); ++b)
+        ASSERT_GE(std::abs(all[a].values[0] - all[b].values[0]), 1.0);
+  }
+  EXPECT_GT(previousCount, 5);
 }
 
 }  // namespace

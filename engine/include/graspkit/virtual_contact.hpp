@@ -19,4 +19,20 @@ struct VirtualContact {
   double sCof = 0.0;
 };
 
+class Robot;
+
+// Virtual contacts for a hand whose file gives none (28 of GraspIt!'s 55 robot files, every URDF
+// hand), derived from its geometry and its closing motion. The rule:
+//   - a finger link gets one contact if it moves when the hand closes: each DOF is moved a small
+//     step along its default velocity from the robot's current values, and a triangle of the
+//     link's mesh belongs to the link's pad when its outward normal lies within 45 degrees of
+//     the way its centroid moves;
+//   - the palm gets one, its pad facing within 45 degrees of the approach direction;
+//   - the contact sits on the pad's surface at the point nearest the pad's area-weighted centroid,
+//     with the pad's area-weighted mean normal (pointing out of the link), GraspIt!'s contact
+//     frame around it, 8 friction edges (a point contact with friction) and sCof 0.5.
+// A link with no such triangles gets none. Locations and frames are in the link frame, as in a
+// virtual-contact file.
+std::vector<VirtualContact> deriveVirtualContacts(const Robot& robot);
+
 }  // namespace graspkit

@@ -41,6 +41,18 @@ EigengraspMap::EigengraspMap(const RobotModel& hand) {
   if (origin_.size() != dofs || norm_.size() != dofs)
     throw Error(fmt::format("{}: eigengrasp origin or norm does not have {} values",
                             hand.file.string(), dofs));
+  // A hand without an eigengrasp file searches its DOFs one by one: each amplitude spans its
+  // DOF's whole range (a fixed +-4 would hold a gripper's 0-40 mm DOF between 16 and 24 mm,
+  // never open enough to reach round a box).
+  if (set.identity) {
+    for (int i = 0; i < directions_.rows(); ++i) {
+      const Eigengrasp& grasp = set.grasps[static_cast<std::size_t>(i)];
+      Eigen::Index d = 0;
+      if (grasp.min || grasp.max || directions_.row(i).cwiseAbs().maxCoeff(&d) != 1.0) continue;
+      min_[i] = (dofMin_[d] - origin_[d]) / norm_[d];
+      max_[i] = (dofMax_[d] - origin_[d]) / norm_[d];
+    }
+  }
   projection_ = directions_.transpose().completeOrthogonalDecomposition().pseudoInverse();
 }
 

@@ -40,49 +40,101 @@ PlannerProgress progressOf(const Planner& planner, double seconds,
   return p;
 }
 
-void finishOne(PlanningScene& scene, PlannedGrasp& grasp) {
+}  // namespace
+
+void finishGrasp(PlanningScene& scene, PlannedGrasp& grasp) {
   scene.setHand(grasp.pose, grasp.dofs);
-  const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
-  const Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
-  grasp.closedDofs = closed.dofValues;
+  autoGrasp(scene.world(), scene.robot());
+  Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
+  grasp.closed = scene.handConfiguration();
   grasp.epsilon = measured.epsilon;
   grasp.volume = measured.volume;
   grasp.contacts = static_cast<int>(measured.contacts.size());
+  grasp.contactList = std::move(measured.contacts);
   grasp.forceClosure = measured.forceClosure;
   grasp.evaluated = true;
 }
 
-}  // namespace
+bool betterGrasp(const PlannedGrasp& a, const PlannedGrasp& b) {
+  if (a.forceClosure != b.forceClosure) return a.forceClosure;
+  if (a.epsilon != b.epsilon) return a.epsilon > b.epsilon;
+  if (a.volume != b.volume) return a.volume > b.volume;
+  return a.energy < b.energy;
+}
 
-PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget) {
+World graspWorld(const PlanningRequest& request, const PlannedGrasp& grasp) {
+  if (!request.world) throw Error("a planning request needs a world");
+  World world = request.world->clone();
+  if (grasp.evaluated) {
+    applyHandConfiguration(world, request.robot, grasp.closed);
+  } else {
+    for (int j = 0; j < static_cast<int>(world.robot(request.robot).breakaway().size()); ++j)
+      world.setBreakaway(request.robot, j, BreakawayState{});
+    world.setRobotPose(request.robot, grasp.pose);
+    world.setDofValues(request.robot, grasp.dofs, LimitPolicy::Clamp);
+  }
+  return world;
+}
+
+namespace {
+
+void checkBudget(const PlanningBudget& budget) {
   if (!budget.steps && !budget.seconds)
     throw Error("a planning budget needs a number of steps or of seconds");
   if (budget.steps && *budget.steps < 0)
     throw Error(fmt::format("a planning budget of {} steps is not valid", *budget.steps));
   if (budget.seconds && !(*budget.seconds >= 0))
     throw Error(fmt::format("a planning budget of {} seconds is not valid", *budget.seconds));
+}
+
+}  // namespace
+
+void Planner::run(const PlanningBudget& budget) {
+  checkBudget(budget);
   const auto start = Clock::now();
-  const std::int64_t first = planner.stepsDone();
+  const std::int64_t first = stepsDone();
   double lastReport = 0.0;
-  while (!planner.done()) {
-    const std::int64_t done = planner.stepsDone() - first;
+  auto fraction = [&](std::int64_t done, double elapsed) {
+    if (budget.steps) return *budget.steps > 0 ? static_cast<double>(done) / *budget.steps : 1.0;
+    return *budget.seconds > 0 ? elapsed / *budget.seconds : 1.0;
+  };
+  while (!done()) {
+    const std::int64_t taken = stepsDone() - first;
     const double elapsed = secondsSince(start);
-    if (budget.steps && done >= *budget.steps) break;
+    if (budget.steps && taken >= *budget.steps) break;
     if (budget.seconds && elapsed >= *budget.seconds) break;
-    std::int64_t chunk = chunkFor(done, elapsed);
-    if (budget.steps) chunk = std::min(chunk, *budget.steps - done);
-    planner.step(chunk);
+    std::int64_t chunk = chunkFor(taken, elapsed);
+    if (budget.steps) chunk = std::min(chunk, *budget.steps - taken);
+    step(chunk);
     if (budget.progress && secondsSince(start) - lastReport >= budget.reportEvery) {
       lastReport = secondsSince(start);
-      if (!budget.progress(progressOf(planner, lastReport, planner.best()))) break;
+      PlannerProgress p = progressOf(*this, lastReport, best());
+      p.fraction = std::min(1.0, fraction(stepsDone() - first, lastReport));
+      if (!budget.progress(p)) break;
     }
   }
+}
+
+PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget) {
+  checkBudget(budget);
+  const auto start = Clock::now();
+  const std::int64_t first = planner.stepsDone();
+  planner.run(budget);
   planner.finish();
   PlanningRun run;
   run.grasps = planner.best();
   run.steps = planner.stepsDone() - first;
   run.seconds = secondsSince(start);
-  if (budget.progress) budget.progress(progressOf(planner, run.seconds, run.grasps));
+  if (budget.progress) {
+    PlannerProgress p = progressOf(planner, run.seconds, run.grasps);
+    p.fraction = 1.0;
+    if (std::all_of(run.grasps.begin(), run.grasps.end(),
+                    [](const PlannedGrasp& g) { return g.evaluated; }))
+      p.forceClosure =
+          static_cast<int>(std::count_if(run.grasps.begin(), run.grasps.end(),
+                                         [](const PlannedGrasp& g) { return g.forceClosure; }));
+    budget.progress(p);
+  }
   return run;
 }
 
@@ -97,7 +149,7 @@ void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& gra
       // A fresh clone per grasp: nothing one autograsp leaves in the world (broken-away
       // joints, anything a robot type keeps) may change the next grasp's measure.
       for (std::size_t i = next++; i < grasps.size(); i = next++)
-        finishOne(*makePlanningScene(request, space), grasps[i]);
+        if (!grasps[i].evaluated) finishGrasp(*makePlanningScene(request, space), grasps[i]);
     } catch (...) {
       errors[static_cast<std::size_t>(w)] = std::current_exception();
     }

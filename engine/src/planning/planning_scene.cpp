@@ -40,6 +40,11 @@ PlanningScene::PlanningScene(World world, int robot, BodyRef object,
   if (!space_) throw Error("a planning scene needs a search space");
   for (const BodyRef& body : worldBodies(world_))
     if (body.isLink() && body.index == robot_) hand_links_.push_back(body);
+  virtual_contacts_ = hand().model().virtualContacts;
+  if (virtual_contacts_.empty()) {
+    virtual_contacts_ = deriveVirtualContacts(hand());
+    derived_contacts_ = true;
+  }
 }
 
 void PlanningScene::place(std::span<const double> values) {
@@ -55,17 +60,11 @@ void PlanningScene::setHand(const Transform& pose, std::span<const double> dofs)
 }
 
 HandConfiguration PlanningScene::handConfiguration() const {
-  const Robot& robot = hand();
-  return {robot.pose(),
-          {robot.dofValues().begin(), robot.dofValues().end()},
-          {robot.breakaway().begin(), robot.breakaway().end()}};
+  return handConfigurationOf(world_, robot_);
 }
 
 void PlanningScene::restore(const HandConfiguration& configuration) {
-  for (int j = 0; j < static_cast<int>(configuration.breakaway.size()); ++j)
-    world_.setBreakaway(robot_, j, configuration.breakaway[j]);
-  world_.setRobotPose(robot_, configuration.pose);
-  world_.setDofValues(robot_, configuration.dofs, LimitPolicy::Ignore);
+  applyHandConfiguration(world_, robot_, configuration);
 }
 
 bool PlanningScene::handCollides() const {
@@ -74,7 +73,7 @@ bool PlanningScene::handCollides() const {
 
 std::vector<PlacedVirtualContact> PlanningScene::virtualContacts() const {
   const Robot& robot = hand();
-  const auto& contacts = robot.model().virtualContacts;
+  const auto& contacts = virtual_contacts_;
   std::vector<PlacedVirtualContact> placed;
   placed.reserve(contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -96,9 +95,23 @@ std::optional<SurfacePoint> PlanningScene::nearestObjectPoint(const Vector3& poi
   return object_scene_.nearestSurfacePoint(point, maxDistance);
 }
 
-}  // namespace graspkit
+HandConfiguration handConfigurationOf(const World& world, int robot) {
+  const Robot& hand = world.robot(robot);
+  return {hand.pose(),
+          {hand.dofValues().begin(), hand.dofValues().end()},
+          {hand.breakaway().begin(), hand.breakaway().end()}};
+}
 
-namespace graspkit {
+void applyHandConfiguration(World& world, int robot, const HandConfiguration& configuration) {
+  const Robot& hand = world.robot(robot);
+  if (configuration.breakaway.size() != hand.breakaway().size())
+    throw Error(fmt::format("robot '{}' has {} joints; the hand configuration has {}", hand.name(),
+                            hand.breakaway().size(), configuration.breakaway.size()));
+  for (int j = 0; j < static_cast<int>(configuration.breakaway.size()); ++j)
+    world.setBreakaway(robot, j, configuration.breakaway[j]);
+  world.setRobotPose(robot, configuration.pose);
+  world.setDofValues(robot, configuration.dofs, LimitPolicy::Ignore);
+}
 
 std::optional<double> evaluateState(PlanningScene& scene, SearchEnergy& energy,
                                     std::span<const double> values) {

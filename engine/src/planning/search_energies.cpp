@@ -98,13 +98,13 @@ double potentialScale(double distance, double cosine) {
 }
 
 double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) {
-  const auto& model = scene.hand().model();
+  const auto& models = scene.virtualContactModels();
   std::vector<std::vector<Vector6>> wrenches;
   for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
     const ContactSample s = sample(scene, contact, cache);
     const double scale = potentialScale(s.distance, s.cosine);
     if (scale <= kPotentialCountThreshold) continue;
-    const VirtualContact& source = model.virtualContacts[static_cast<std::size_t>(contact.index)];
+    const VirtualContact& source = models[static_cast<std::size_t>(contact.index)];
     const Matrix3 frame = contact.frame.linear();
     std::vector<Vector6> set;
     for (const auto& edge : source.frictionEdges) {

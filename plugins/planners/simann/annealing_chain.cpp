@@ -17,7 +17,7 @@ std::uint64_t chainSeed(std::uint64_t seed, int index) {
   return z ^ (z >> 31);
 }
 
-AnnealingChain::AnnealingChain(std::unique_ptr<PlanningScene> scene,
+AnnealingChain::AnnealingChain(std::shared_ptr<PlanningScene> scene,
                                std::unique_ptr<SearchEnergy> energy, const ChainSettings& settings,
                                std::uint64_t seed, SearchState start)
     : scene_(std::move(scene)),
@@ -74,7 +74,7 @@ bool AnnealingChain::step() {
       settings_.checkCollisionsLast && !energy_->expensive() && energy_->rejectsCollisions();
   const bool advanced =
       lazy ? stepCheckingLast(tNeighbour, tAccept) : stepCheckingFirst(tNeighbour, tAccept);
-  if (advanced) ++schedule_step_;
+  if (advanced) schedule_step_ += settings_.scheduleStride;
   return advanced;
 }
 
@@ -115,6 +115,14 @@ void AnnealingChain::moveTo(std::vector<double> values, double energy) {
 
 void AnnealingChain::runTo(std::int64_t target) {
   while (steps_ < target) step();
+}
+
+bool AnnealingChain::runTo(std::int64_t target, const std::function<bool()>& keepGoing) {
+  while (steps_ < target) {
+    if (!keepGoing()) return false;
+    step();
+  }
+  return true;
 }
 
 }  // namespace graspkit::simann

@@ -5,6 +5,7 @@
 // chain's best list.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -25,11 +26,16 @@ struct ChainSettings {
   // neighbours the Metropolis test would move to; rejected neighbours then cost no collision
   // check. Off: GraspIt!'s order for every energy.
   bool checkCollisionsLast = true;
+  // How far the schedule advances per step: 1 is GraspIt!'s; simann's restarts pass the whole
+  // schedule (steps K0 .. K0 + 40000) in their few hundred steps.
+  long scheduleStride = 1;
 };
 
 class AnnealingChain {
  public:
-  AnnealingChain(std::unique_ptr<PlanningScene> scene, std::unique_ptr<SearchEnergy> energy,
+  // The scene may be shared with other work of the same thread (simann's restarts run one
+  // chain after another in one scene); the chain places the hand on every step.
+  AnnealingChain(std::shared_ptr<PlanningScene> scene, std::unique_ptr<SearchEnergy> energy,
                  const ChainSettings& settings, std::uint64_t seed, SearchState start);
 
   // One annealing step. Returns false when no legal neighbour was found in 11 tries
@@ -37,6 +43,8 @@ class AnnealingChain {
   bool step();
   // Steps until `target` steps have been taken.
   void runTo(std::int64_t target);
+  // The same, asking `keepGoing` before each step; returns false when it said stop.
+  bool runTo(std::int64_t target, const std::function<bool()>& keepGoing);
 
   std::int64_t steps() const { return steps_; }
   const SearchState& current() const { return current_; }
@@ -50,7 +58,7 @@ class AnnealingChain {
   bool stepCheckingLast(double tNeighbour, double tAccept);
   void moveTo(std::vector<double> values, double energy);
 
-  std::unique_ptr<PlanningScene> scene_;
+  std::shared_ptr<PlanningScene> scene_;
   std::unique_ptr<SearchEnergy> energy_;
   ChainSettings settings_;
   std::mt19937_64 random_;

@@ -13,6 +13,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/planning/planning_scene.hpp"
 #include "graspkit/registry.hpp"
+#include "restart_planner.hpp"
 
 namespace graspkit::simann {
 
@@ -20,10 +21,8 @@ namespace {
 
 struct Settings {
   ChainSettings search;
-  bool twoStage = false;
-  ChainSettings refine;
-  std::string refineEnergy = "autograsp-quality";
-  std::int64_t refineSteps = 40;
+  bool restarts = false;
+  RestartSettings restart;
 };
 
 const AnnealingParameters& preset(const std::string& name) {
@@ -45,41 +44,69 @@ double number(const std::string& key, const std::string& text, double min) {
   throw Error(fmt::format("simann: option {} = '{}' is not a number >= {}", key, text, min));
 }
 
+std::int64_t whole(const std::string& key, const std::string& text, double min, double max) {
+  const double value = number(key, text, min);
+  if (value != std::floor(value) || value > max)
+    throw Error(fmt::format("simann: option {} = '{}' is not a whole number in [{}, {}]", key, text,
+                            min, max));
+  return static_cast<std::int64_t>(value);
+}
+
+RestartStart parseStart(const std::string& text) {
+  if (text == "around") return RestartStart::Around;
+  if (text == "random") return RestartStart::Random;
+  if (text == "world") return RestartStart::World;
+  throw Error(fmt::format("simann: start '{}' unknown; expected around, random or world", text));
+}
+
 Settings settingsFrom(const PlanningRequest& request) {
   Settings s;
   s.search.bestListSize = request.bestListSize;
-  s.refine.parameters = preset("STRICT");
-  s.refine.distanceThreshold = 0.3;  // GraspIt!'s guided planner's children
-  s.refine.jumpScale = 0.1;
-  s.refine.bestListSize = 1;
+  RestartSettings& r = s.restart;
+  r.search.bestListSize = 4;
+  r.refine.parameters = preset("STRICT");
+  r.refine.distanceThreshold = 0.3;  // GraspIt!'s guided planner's children
+  r.refine.jumpScale = 0.1;
+  r.refine.bestListSize = 1;
   for (const auto& [key, value] : request.options) {
-    if (key == "preset")
+    if (key == "preset") {
       s.search.parameters = preset(value);
-    else if (key == "mode") {
-      if (value != "anneal" && value != "two-stage")
-        throw Error(fmt::format("simann: mode '{}' unknown; expected anneal or two-stage", value));
-      s.twoStage = value == "two-stage";
-    } else if (key == "threshold")
+      r.search.parameters = s.search.parameters;
+    } else if (key == "mode") {
+      if (value != "anneal" && value != "restarts")
+        throw Error(fmt::format("simann: mode '{}' unknown; expected anneal or restarts", value));
+      s.restarts = value == "restarts";
+    } else if (key == "threshold") {
       s.search.distanceThreshold = number(key, value, 0.0);
+      r.threshold = s.search.distanceThreshold;
+    } else if (key == "restart-steps")
+      r.searchSteps = whole(key, value, 1, 1e9);
+    else if (key == "restart-grasps")
+      r.search.bestListSize = static_cast<int>(whole(key, value, 1, 1000));
+    else if (key == "stride")
+      r.stride = static_cast<long>(whole(key, value, 1, 1e9));
+    else if (key == "start")
+      r.start = parseStart(value);
     else if (key == "refine-steps")
-      s.refineSteps = static_cast<std::int64_t>(number(key, value, 0.0));
+      r.refineSteps = whole(key, value, 0, 1e9);
     else if (key == "refine-preset")
-      s.refine.parameters = preset(value);
+      r.refine.parameters = preset(value);
     else if (key == "refine-energy")
-      s.refineEnergy = value;
+      r.refineEnergy = value;
     else if (key == "refine-jump")
-      s.refine.jumpScale = number(key, value, 0.0);
+      r.refine.jumpScale = number(key, value, 0.0);
     else if (key == "collision-order") {
       if (value != "graspit" && value != "lazy")
         throw Error(
             fmt::format("simann: collision-order '{}' unknown; expected lazy or graspit", value));
       s.search.checkCollisionsLast = value == "lazy";
+      r.search.checkCollisionsLast = s.search.checkCollisionsLast;
     } else
-      throw Error(
-          fmt::format("simann: unknown option '{}'; known: preset, mode, threshold, "
-                      "refine-steps, refine-preset, refine-energy, refine-jump, "
-                      "collision-order",
-                      key));
+      throw Error(fmt::format(
+          "simann: unknown option '{}'; known: preset, mode, threshold, "
+          "collision-order, restart-steps, restart-grasps, stride, start, refine-steps, "
+          "refine-preset, refine-energy, refine-jump",
+          key));
   }
   return s;
 }
@@ -113,12 +140,6 @@ class SimAnnPlanner final : public Planner {
       throw Error(fmt::format("simann: {} threads is not valid", request.threads));
     if (request.bestListSize < 1)
       throw Error(fmt::format("simann: a best list of {} is not valid", request.bestListSize));
-    if (settings_.twoStage) {
-      PlanningRequest stage = request;
-      stage.energy = settings_.refineEnergy;
-      stage.customEnergy = nullptr;
-      makeSearchEnergy(stage);  // an unknown refine-energy fails now, not after the search
-    }
     for (int c = 0; c < request.threads; ++c) {
       auto scene = makePlanningScene(request, space_);
       SearchState start = request.states.empty() ? startState(*scene) : request.states.front();
@@ -144,43 +165,13 @@ class SimAnnPlanner final : public Planner {
   }
 
   std::int64_t stepsDone() const override {
-    std::int64_t total = refined_steps_;
+    std::int64_t total = 0;
     for (const auto& chain : chains_) total += chain->steps();
     return total;
   }
 
-  void finish() override {
-    if (!settings_.twoStage || finished_) return;
-    finished_ = true;
-    const std::vector<SearchState> seeds = mergedStates();
-    std::vector<SearchState> refined(seeds.size());
-    std::vector<std::int64_t> steps(seeds.size(), 0);
-    PlanningRequest stage = request_;
-    stage.energy = settings_.refineEnergy;
-    stage.customEnergy = nullptr;
-    parallelFor(static_cast<int>(seeds.size()), request_.threads, [&](int i) {
-      const auto at = static_cast<std::size_t>(i);
-      // The seed itself is a candidate: evaluated first, so refinement never makes it worse.
-      auto scene = makePlanningScene(stage, space_);
-      auto energy = makeSearchEnergy(stage);
-      SearchState best = seeds[at];
-      best.energy = evaluateState(*scene, *energy, best.values).value_or(kUnevaluatedEnergy);
-      AnnealingChain chain(std::move(scene), std::move(energy), settings_.refine,
-                           chainSeed(request_.seed ^ 0x5EEDull, i), best);
-      chain.runTo(settings_.refineSteps);
-      if (!chain.best().states().empty() && chain.best().states().front().energy < best.energy)
-        best = chain.best().states().front();
-      refined[at] = std::move(best);
-      steps[at] = chain.steps() + 1;
-    });
-    for (std::int64_t s : steps) refined_steps_ += s;
-    BestList list = emptyList(settings_.refine.distanceThreshold);
-    for (const SearchState& s : refined) list.offer(s);
-    refined_ = list.states();
-  }
-
   std::vector<PlannedGrasp> best() const override {
-    const std::vector<SearchState> states = finished_ ? refined_ : mergedStates();
+    const std::vector<SearchState> states = mergedStates();
     std::vector<PlannedGrasp> grasps;
     for (const SearchState& s : states) grasps.push_back(plannedGrasp(*space_, s));
     return grasps;
@@ -207,14 +198,13 @@ class SimAnnPlanner final : public Planner {
   std::shared_ptr<const SearchSpace> space_;
   std::vector<std::unique_ptr<AnnealingChain>> chains_;
   std::int64_t target_ = 0;
-  bool finished_ = false;
-  std::vector<SearchState> refined_;
-  std::int64_t refined_steps_ = 0;
 };
 
 }  // namespace
 
 std::unique_ptr<Planner> makeSimAnnPlanner(const PlanningRequest& request) {
+  const Settings settings = settingsFrom(request);
+  if (settings.restarts) return makeRestartPlanner(request, settings.restart);
   return std::make_unique<SimAnnPlanner>(request);
 }
 

@@ -1,17 +1,16 @@
 #pragma once
-// The simulated-annealing planner: one annealing chain per thread, each on its own clone of
-// the world, their best lists merged under GraspIt!'s distance rule. Options (all optional):
+// The simulated-annealing planner, in two modes (option "mode"):
 //
-//   preset      DEFAULT (GraspIt!'s), LOOP, MODIFIED, STRICT or ONLINE
-//   mode        anneal (one search) or two-stage: the search (contact energy by default) seeds
-//               a short refinement of each of its best states with refine-energy
-//   threshold   the best list's distance rule (GraspIt!: 0.2)
-//   collision-order
-//               lazy (default): for cheap energies, check collisions only on neighbours the
-//               Metropolis test accepts; graspit: check every neighbour first, as GraspIt! does
-//   refine-steps, refine-preset, refine-energy, refine-jump
-//               the refinement: steps per seed (40), its schedule (STRICT), its energy
-//               (autograsp-quality) and the fraction of each variable's jump it uses (0.1)
+//   anneal      GraspIt!'s search (the default): one annealing chain per thread, each on its
+//               own clone of the world, their best lists merged under GraspIt!'s distance rule
+//   restarts    many short searches, each closing and measuring its best states, feeding one
+//               list of distinct grasps: any-time, thread-count independent (restart_planner.hpp)
+//
+// Options (all optional): preset (DEFAULT, LOOP, MODIFIED, STRICT or ONLINE), threshold (the
+// distance rule, GraspIt!'s 0.2), collision-order (lazy, the default: for cheap energies, check
+// collisions only on neighbours the Metropolis test accepts; graspit: every neighbour first);
+// for restarts also restart-steps, restart-grasps, stride, start, refine-steps, refine-preset,
+// refine-energy and refine-jump (see restart_planner.hpp and plugins/planners/README.md).
 
 #include <memory>
 

@@ -25,7 +25,8 @@ class EigengraspMap {
   // The amplitudes whose DOF values are nearest (least squares) to `dofs`.
   Eigen::VectorXd amplitudes(const Eigen::VectorXd& dofs) const;
 
-  // The search range of amplitude i: the file's <Limits>, or GraspIt!'s default of [-4, 4].
+  // The search range of amplitude i: the file's <Limits>, or GraspIt!'s default of [-4, 4]; for a
+  // hand without an eigengrasp file (identity eigengrasps), its DOF's whole range.
   double minAmplitude(int i) const { return min_[i]; }
   double maxAmplitude(int i) const { return max_[i]; }
 

@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "graspkit/body_ref.hpp"
+#include "graspkit/contact.hpp"
+#include "graspkit/planning/hand_configuration.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_space.hpp"
 #include "graspkit/planning/search_state.hpp"
@@ -48,26 +50,43 @@ struct PlanningRequest {
   std::vector<SearchState> states;
 };
 
-// One planned grasp: the hand pose and DOFs the planner found and, after finishGrasps(), what
-// closing the hand there gives.
+// One planned grasp: the hand pose and DOFs the planner found (the pre-grasp) and, after
+// finishGrasps(), what closing the hand there gives: the closed hand (pose, DOFs and breakaway
+// state, which is what reproduces the grasp in a saved world) and its measures.
 struct PlannedGrasp {
   std::vector<double> values;              // in the request's search space
-  Transform pose = Transform::Identity();  // the hand's world pose
-  std::vector<double> dofs;                // before autograsp
+  Transform pose = Transform::Identity();  // the hand's world pose before closing
+  std::vector<double> dofs;                // before autograsp (the open, pre-grasp posture)
   double energy = kUnevaluatedEnergy;
-  bool evaluated = false;  // set by finishGrasps()
-  std::vector<double> closedDofs;
+  bool evaluated = false;    // set by finishGrasps()
+  HandConfiguration closed;  // after autograsp (a robot type's close may move the base too)
   double epsilon = -1.0;
   double volume = 0.0;
   int contacts = 0;
   bool forceClosure = false;
+  std::vector<Contact> contactList;  // the closed hand's contacts with the object, world frame
 };
+
+// Whether grasp a ranks before grasp b by what closing the hand gave: force closure first, then
+// the larger epsilon, then the larger volume, then the lower search energy.
+bool betterGrasp(const PlannedGrasp& a, const PlannedGrasp& b);
 
 struct PlannerProgress {
   std::int64_t steps = 0;
   double seconds = 0.0;
   double bestEnergy = kUnevaluatedEnergy;
-  int states = 0;  // in the best list
+  int states = 0;         // in the best list
+  int forceClosure = -1;  // force-closure grasps found so far; -1 when the planner does not know
+  double fraction = 0.0;  // of the budget spent, 0..1
+};
+
+struct PlanningBudget {
+  std::optional<std::int64_t> steps;  // total steps
+  std::optional<double> seconds;      // wall time
+  // Called about every `reportEvery` seconds, always from the thread that runs the planner;
+  // returning false stops the run.
+  std::function<bool(const PlannerProgress&)> progress;
+  double reportEvery = 0.25;
 };
 
 class Planner {
@@ -78,8 +97,13 @@ class Planner {
   virtual void step(std::int64_t steps) = 0;
   // Whether the planner has nothing more to do (a list planner that evaluated its list).
   virtual bool done() const { return false; }
-  // Runs once the budget is spent: a last stage such as the two-stage planner's refinement.
-  // Its steps are not part of the budget (they are counted in stepsDone()).
+  // Spends `budget` (its steps come on top of stepsDone()): steps until it is spent, the planner
+  // is done, or progress returns false. The default drives step() in chunks and looks at the
+  // clock between them; a planner whose work comes in larger pieces (simann's restarts)
+  // watches the budget itself. Throws graspkit::Error for a budget without steps or seconds.
+  virtual void run(const PlanningBudget& budget);
+  // Runs once the budget is spent: a last stage, if a planner has one (none of the built-in
+  // planners has: their budgets cover all their work).
   virtual void finish() {}
   virtual std::int64_t stepsDone() const = 0;
   // The best states so far, best first.
@@ -88,28 +112,29 @@ class Planner {
 
 using PlannerFactory = std::function<std::unique_ptr<Planner>(const PlanningRequest&)>;
 
-struct PlanningBudget {
-  std::optional<std::int64_t> steps;  // total steps
-  std::optional<double> seconds;      // wall time
-  // Called about every `reportEvery` seconds; returning false stops the run.
-  std::function<bool(const PlannerProgress&)> progress;
-  double reportEvery = 0.25;
-};
-
 struct PlanningRun {
   std::vector<PlannedGrasp> grasps;
   std::int64_t steps = 0;
   double seconds = 0.0;
 };
 
-// Steps `planner` until the budget is spent (or it is done, or progress returns false). Throws
-// graspkit::Error when the budget has neither steps nor seconds.
+// Runs `planner` on the budget (Planner::run), then its last stage (Planner::finish), and
+// returns its best list. Throws graspkit::Error when the budget has neither steps nor seconds.
 PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget);
 
-// Closes the hand on each grasp (autograsp from its pose and DOFs) and measures the result with
-// the L1 wrench space: epsilon, volume, contacts, force closure. Uses up to `threads` threads.
+// Closes the hand on each grasp not yet finished (autograsp from its pose and DOFs, in a fresh
+// clone of the world) and measures the result with the L1 wrench space: epsilon, volume,
+// contacts, force closure. Uses up to `threads` threads.
 void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& grasps,
                   int threads = 1);
+
+// A clone of the request's world with the hand as `grasp` left it: closed (pose, DOFs, breakaway
+// state) once finishGrasps() has run, else at the grasp's pre-grasp pose and DOFs. This is the
+// world to save for a grasp: loaded again it gives the same contacts, epsilon and volume.
+World graspWorld(const PlanningRequest& request, const PlannedGrasp& grasp);
+
+// Closes the hand on one grasp in `scene` (its world is changed) and measures it.
+void finishGrasp(PlanningScene& scene, PlannedGrasp& grasp);
 
 // Helpers for planner implementations.
 std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& request);

@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "graspkit/body_ref.hpp"
+#include "graspkit/planning/hand_configuration.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_space.hpp"
 #include "graspkit/ray_scene.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
 
 namespace graspkit {
@@ -24,13 +26,6 @@ struct PlacedVirtualContact {
   Vector3 normal = Vector3::UnitZ();        // world, unit, pointing away from the hand
   Transform frame = Transform::Identity();  // the contact frame in the world (z = normal)
   int index = 0;                            // into RobotModel::virtualContacts
-};
-
-// The hand's configuration, to put it back after an energy moved it (autograsp does).
-struct HandConfiguration {
-  Transform pose = Transform::Identity();
-  std::vector<double> dofs;
-  std::vector<BreakawayState> breakaway;
 };
 
 class PlanningScene {
@@ -55,6 +50,7 @@ class PlanningScene {
   // Puts the hand at `pose` with `dofs` (clamped into range), every joint re-engaged, so what
   // an earlier autograsp left behind (broken-away joints) cannot leak into the next state.
   void setHand(const Transform& pose, std::span<const double> dofs);
+  // The hand's configuration, to put it back after an energy moved it (autograsp does).
   HandConfiguration handConfiguration() const;
   void restore(const HandConfiguration& configuration);
 
@@ -64,6 +60,10 @@ class PlanningScene {
 
   // The hand's virtual contacts where the hand now is.
   std::vector<PlacedVirtualContact> virtualContacts() const;
+  // The virtual contacts the energies use (PlacedVirtualContact::index points here): the
+  // model's, or, for a hand whose file gives none, deriveVirtualContacts() of it.
+  const std::vector<VirtualContact>& virtualContactModels() const { return virtual_contacts_; }
+  bool virtualContactsDerived() const { return derived_contacts_; }
   // The nearest point of the object's surface to `point`, within `maxDistance` mm.
   std::optional<SurfacePoint> nearestObjectPoint(
       const Vector3& point, double maxDistance = std::numeric_limits<double>::infinity()) const;
@@ -78,6 +78,8 @@ class PlanningScene {
   double object_radius_ = 0.0;
   std::vector<BodyRef> hand_links_;
   RayScene object_scene_;
+  std::vector<VirtualContact> virtual_contacts_;
+  bool derived_contacts_ = false;
 };
 
 // Places the hand at `values` and returns the state's energy, or nullopt when the state is

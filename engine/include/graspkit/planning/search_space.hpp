@@ -26,7 +26,8 @@ enum class PositionSpace {
   Approach,   // along the hand's approach direction from its start: dist and two wrist angles
 };
 enum class PostureSpace {
-  Eigen,  // eigengrasp amplitudes (range from the file or +-4, jump = range / 4)
+  Eigen,  // eigengrasp amplitudes (range from the file, +-4, or the DOF range for identity sets;
+          // jump = range / 4)
   Dof,    // DOF values (the DOF's range, jump = range / 2)
 };
 

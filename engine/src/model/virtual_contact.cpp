@@ -1,0 +1,140 @@
+#include "graspkit/virtual_contact.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "graspkit/body.hpp"
+#include "graspkit/contact.hpp"
+#include "graspkit/robot.hpp"
+
+namespace graspkit {
+
+namespace {
+
+constexpr double kPadCosine = 0.70710678118654752;  // 45 degrees
+constexpr double kDerivedFriction = 0.5;
+constexpr int kFrictionEdges = 8;
+// GraspIt!'s autograsp step: 0.01 of a DOF's default velocity.
+constexpr double kClosingStep = 0.01;
+
+// The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
+Vector3 closestOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c) {
+  const Vector3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vector3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The pad of `mesh` (link frame): triangles whose outward normal is within 45 degrees of
+// `motion(centroid)` (a direction in the link frame); nullopt when there are none.
+template <typename Motion>
+std::optional<VirtualContact> padContact(const TriangleMesh& mesh, Motion motion) {
+  Vector3 centroid = Vector3::Zero(), normal = Vector3::Zero();
+  double area = 0.0;
+  std::vector<std::size_t> pad;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Vector3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]],
+                  &c = mesh.vertices[tri[2]];
+    const Vector3 cross = (b - a).cross(c - a);
+    const double twiceArea = cross.norm();
+    if (twiceArea <= 0) continue;
+    const Vector3 n = cross / twiceArea;
+    const Vector3 centre = (a + b + c) / 3.0;
+    const Vector3 way = motion(centre);
+    if (way.norm() <= 0 || n.dot(way.normalized()) < kPadCosine) continue;
+    pad.push_back(t);
+    centroid += 0.5 * twiceArea * centre;
+    normal += 0.5 * twiceArea * n;
+    area += 0.5 * twiceArea;
+  }
+  if (pad.empty() || normal.norm() <= 0) return std::nullopt;
+  centroid /= area;
+  Vector3 nearest = centroid;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t t : pad) {
+    const auto& tri = mesh.triangles[t];
+    const Vector3 q = closestOnTriangle(centroid, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
+                                        mesh.vertices[tri[2]]);
+    if ((q - centroid).squaredNorm() < best) {
+      best = (q - centroid).squaredNorm();
+      nearest = q;
+    }
+  }
+  VirtualContact contact;
+  contact.location = nearest;
+  contact.translation = nearest;
+  contact.normal = normal.normalized();
+  contact.rotation = Quaternion(contactFrame(contact.normal));
+  contact.sCof = kDerivedFriction;
+  for (int e = 0; e < kFrictionEdges; ++e) {
+    const double angle = 2.0 * M_PI * e / kFrictionEdges;
+    Eigen::Matrix<double, 6, 1> edge = Eigen::Matrix<double, 6, 1>::Zero();
+    edge[0] = std::cos(angle);
+    edge[1] = std::sin(angle);
+    contact.frictionEdges.push_back(edge);
+  }
+  return contact;
+}
+
+}  // namespace
+
+std::vector<VirtualContact> deriveVirtualContacts(const Robot& robot) {
+  const RobotModel& model = robot.model();
+  std::vector<VirtualContact> contacts;
+  if (model.palm && model.palm->mesh) {
+    const Vector3 approach = model.approachFrame().linear().col(2);
+    if (auto c = padContact(*model.palm->mesh, [&](const Vector3&) { return approach; })) {
+      c->finger = -1;
+      c->link = 0;
+      contacts.push_back(*c);
+    }
+  }
+  // The hand half-way through its range and a closing step later (mid-range, so that no DOF
+  // is held at a limit; a link's pad hardly depends on where in its range it is).
+  Robot middle = robot;
+  std::vector<double> values(model.dofs.size()), ahead(model.dofs.size());
+  for (std::size_t d = 0; d < model.dofs.size(); ++d) {
+    const Dof& dof = model.dofs[d];
+    values[d] = 0.5 * (dof.min + dof.max);
+    ahead[d] = values[d] + kClosingStep * dof.defaultVelocity;
+  }
+  middle.setDofValues(values, LimitPolicy::Ignore);
+  Robot closing = middle;
+  closing.setDofValues(ahead, LimitPolicy::Ignore);
+  for (int c = 0; c < static_cast<int>(model.chains.size()); ++c) {
+    for (int l = 0; l < static_cast<int>(model.chains[c].links.size()); ++l) {
+      const auto& body = model.chains[c].links[l].body;
+      if (!body || !body->mesh) continue;
+      const Transform now = middle.linkPose(c, l);
+      const Transform next = closing.linkPose(c, l);
+      const Transform delta = now.inverse() * next;  // link frame now -> a step later
+      if (delta.isApprox(Transform::Identity(), 1e-12)) continue;
+      // The displacement of a link point, in the link frame.
+      auto motion = [&](const Vector3& p) -> Vector3 { return delta * p - p; };
+      if (auto contact = padContact(*body->mesh, motion)) {
+        contact->finger = c;
+        contact->link = l;
+        contacts.push_back(*contact);
+      }
+    }
+  }
+  return contacts;
+}
+
+}  // namespace graspkit
