@@ -7,6 +7,7 @@
 #include "graspkit/body.hpp"
 #include "graspkit/contact.hpp"
 #include "graspkit/robot.hpp"
+#include "raycast/closest_point.hpp"
 
 namespace graspkit {
 
@@ -17,28 +18,6 @@ constexpr double kDerivedFriction = 0.5;
 constexpr int kFrictionEdges = 8;
 // GraspIt!'s autograsp step: 0.01 of a DOF's default velocity.
 constexpr double kClosingStep = 0.01;
-
-// The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
-Vector3 closestOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c) {
-  const Vector3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vector3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vector3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // The pad of `mesh` (link frame): triangles whose outward normal is within 45 degrees of
 // `motion(centroid)` (a direction in the link frame); nullopt when there are none.
@@ -69,8 +48,8 @@ std::optional<VirtualContact> padContact(const TriangleMesh& mesh, Motion motion
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t t : pad) {
     const auto& tri = mesh.triangles[t];
-    const Vector3 q = closestOnTriangle(centroid, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
-                                        mesh.vertices[tri[2]]);
+    const Vector3 q = raycast::closestPointOnTriangle(centroid, mesh.vertices[tri[0]],
+                                                      mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
     if ((q - centroid).squaredNorm() < best) {
       best = (q - centroid).squaredNorm();
       nearest = q;
