@@ -90,47 +90,75 @@ function(five_decimals out value)
   string(REGEX REPLACE "^(-?[0-9]+\\.[0-9][0-9][0-9][0-9][0-9]).*" "\\1" value "${value}")
   set(${out} "${value}" PARENT_SCOPE)
 endfunction()
+# Loads each world a plan saved (`saved`: its JSON) with `graspkit grasp` and appends to
+# `mismatches` whatever differs from the plan: contacts, epsilon, closed DOFs.
 set(mismatches "")
-foreach(i RANGE ${last})
-  string(JSON file GET "${saved}" world_files ${i})
-  if(NOT EXISTS ${file})
-    message(FATAL_ERROR "world file ${file} was not written")
-  endif()
-  string(JSON planned GET "${saved}" grasps ${i} epsilon)
-  # Saved worlds name GraspIt!'s models relative to its root, as GraspIt!'s own do.
-  execute_process(COMMAND ${GRASPKIT} -q grasp ${file} --root ${data} --json
-                  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "the saved world ${file} does not load (${rc}): ${err}")
-  endif()
-  # The saved world must hold the closed hand the plan measured: its DOFs, to 5 decimals, and,
-  # measured again from the file, the same contacts and epsilon (breakaway state included).
-  foreach(key contacts epsilon)
-    string(JSON planned_value GET "${saved}" grasps ${i} ${key})
-    string(JSON reloaded_value GET "${out}" ${key})
-    if(key STREQUAL "contacts")
-      string(JSON reloaded_value LENGTH "${out}" contacts)
+function(check_reload saved)
+  string(JSON files LENGTH "${saved}" world_files)
+  math(EXPR last "${files} - 1")
+  foreach(i RANGE ${last})
+    string(JSON file GET "${saved}" world_files ${i})
+    if(NOT EXISTS ${file})
+      message(FATAL_ERROR "world file ${file} was not written")
     endif()
-    five_decimals(p5 "${planned_value}")
-    five_decimals(m5 "${reloaded_value}")
-    if(NOT p5 STREQUAL m5)
-      string(APPEND mismatches "  grasp ${i} (${file}): ${key} planned ${planned_value}, "
-                               "reloaded ${reloaded_value}\n")
+    string(JSON planned GET "${saved}" grasps ${i} epsilon)
+    # Saved worlds name GraspIt!'s models relative to its root, as GraspIt!'s own do.
+    execute_process(COMMAND ${GRASPKIT} -q grasp ${file} --root ${data} --json
+                    OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "the saved world ${file} does not load (${rc}): ${err}")
     endif()
+    # The saved world must hold the closed hand the plan measured: its DOFs, to 5 decimals, and,
+    # measured again from the file, the same contacts and epsilon (breakaway state included).
+    foreach(key contacts epsilon)
+      string(JSON planned_value GET "${saved}" grasps ${i} ${key})
+      string(JSON reloaded_value GET "${out}" ${key})
+      if(key STREQUAL "contacts")
+        string(JSON reloaded_value LENGTH "${out}" contacts)
+      endif()
+      five_decimals(p5 "${planned_value}")
+      five_decimals(m5 "${reloaded_value}")
+      if(NOT p5 STREQUAL m5)
+        string(APPEND mismatches "  grasp ${i} (${file}): ${key} planned ${planned_value}, "
+                                 "reloaded ${reloaded_value}\n")
+      endif()
+    endforeach()
+    string(JSON ndofs LENGTH "${saved}" grasps ${i} closed_dofs)
+    math(EXPR lastdof "${ndofs} - 1")
+    foreach(k RANGE ${lastdof})
+      string(JSON planned GET "${saved}" grasps ${i} closed_dofs ${k})
+      string(JSON measured GET "${out}" dof_values ${k})
+      five_decimals(p5 "${planned}")
+      five_decimals(m5 "${measured}")
+      if(NOT p5 STREQUAL m5)
+        string(APPEND mismatches "  grasp ${i} (${file}): DOF ${k} planned ${planned}, "
+                                 "saved ${measured}\n")
+      endif()
+    endforeach()
   endforeach()
-  string(JSON ndofs LENGTH "${saved}" grasps ${i} closed_dofs)
-  math(EXPR lastdof "${ndofs} - 1")
-  foreach(k RANGE ${lastdof})
-    string(JSON planned GET "${saved}" grasps ${i} closed_dofs ${k})
-    string(JSON measured GET "${out}" dof_values ${k})
-    five_decimals(p5 "${planned}")
-    five_decimals(m5 "${measured}")
-    if(NOT p5 STREQUAL m5)
-      string(APPEND mismatches "  grasp ${i} (${file}): DOF ${k} planned ${planned}, "
-                               "saved ${measured}\n")
-    endif()
-  endforeach()
-endforeach()
+  set(mismatches "${mismatches}" PARENT_SCOPE)
+endfunction()
+check_reload("${saved}")
+
+# A hand whose close moves its base (the 2010 PR2 gripper), with the compliant-wrist close that
+# moves an off-centre grasp: its saved worlds reload as planned too.
+file(WRITE ${work}/pr2_cube.xml "<?xml version=\"1.0\" ?>
+<world>
+  <graspableBody><filename>models/objects/cube.xml</filename>
+    <transform><fullTransform>(+1 0 0 0)[0 0 0]</fullTransform></transform></graspableBody>
+  <robot><filename>models/robots/pr2_gripper/pr2_gripper_2010.xml</filename>
+    <transform><fullTransform>(+1 0 0 0)[0 0 300]</fullTransform></transform></robot>
+</world>
+")
+execute_process(COMMAND ${GRASPKIT} -q plan ${work}/pr2_cube.xml --root ${data} --steps 3000
+                        --threads 1 --top 5 --out ${work}/pr2_plan.json
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "plan on the PR2 gripper failed (${rc}): ${err}")
+endif()
+file(READ ${work}/pr2_plan.json pr2_saved)
+check_reload("${pr2_saved}")
+
 # Bad input: a non-zero exit and a message that names the problem, never a crash.
 function(expect_error pattern)
   execute_process(COMMAND ${GRASPKIT} -q plan ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err

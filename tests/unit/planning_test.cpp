@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/best_list.hpp"
+#include "graspkit/planning/centred_close.hpp"
 #include "graspkit/planning/distinct_grasps.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
 #include "graspkit/planning/planner.hpp"
@@ -992,11 +994,80 @@ TEST(DerivedVirtualContacts, GripperBoxPlansForceClosure) {
   request.object = BodyRef::body(1);
   request.threads = 2;
   request.options = {{"mode", "restarts"}};
-  const auto grasps = plan(request, 20000);
+  const auto grasps = plan(request, 40000);
   ASSERT_FALSE(grasps.empty());
   EXPECT_TRUE(grasps.front().forceClosure);
+  // Not just the start state: the searched grasps close on both jaws too (the compliant-wrist
+  // close; without it a rigid two-jaw gripper grips only when centred to a fraction of a mm).
+  EXPECT_GE(forceClosureCount(grasps), 5);
   EXPECT_GT(grasps.front().epsilon, 0.3);
   for (const PlannedGrasp& g : grasps) EXPECT_LT(g.energy, 1e5);  // evaluated, never a silent 0
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closing with a compliant wrist
+
+// gripper_box with the hand moved 6 mm along +x: the jaws (inner faces at x = 46 and -34) stand
+// 16 and 4 mm off the box faces (x = +-30). One rigid DOF closes both, so the -x jaw touches
+// after 4 mm and stops the +x jaw 12 mm short: one jaw touches, no force closure. Half that gap
+// back along -x centres the hand exactly (flat faces, so the FCL gap is exact), and closing
+// again grips with both jaws.
+TEST(CentredClose, OffCentreParallelJawGripsWithBothJaws) {
+  World world = loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml");
+  const Transform centred = world.robot(0).pose();
+  Transform offCentre = centred;
+  offCentre.translation().x() += 6.0;
+  world.setRobotPose(0, offCentre);
+  PlanningRequest request;
+  request.world = std::make_shared<World>(world);
+  request.object = BodyRef::body(1);
+  request.options = {{"mode", "restarts"}};
+  const auto space = makeSearchSpace(request);
+  auto scene = makePlanningScene(request, space);
+
+  PlannedGrasp plain;
+  plain.pose = offCentre;
+  plain.dofs = {0.0};
+  plain.values = space->encode(plain.pose, plain.dofs);
+  PlannedGrasp centredGrasp = plain;
+  finishGrasp(*scene, plain);
+  EXPECT_FALSE(plain.forceClosure);
+  EXPECT_NEAR(plain.closed.dofs.at(0), 4.0, 0.1);  // the near jaw's gap, to the contact band
+
+  closeCentred(*scene, centredGrasp);
+  ASSERT_TRUE(centredGrasp.forceClosure);
+  EXPECT_NEAR(centredGrasp.pose.translation().x(), centred.translation().x(), 0.05);
+  EXPECT_NEAR(centredGrasp.closed.dofs.at(0), 10.0, 0.1);  // both jaws travel 10 mm
+  std::set<int> chains;
+  for (const Contact& c : centredGrasp.contactList)
+    for (const BodyRef& b : {c.body1, c.body2})
+      if (b.isLink() && !b.link.isBase()) chains.insert(b.link.chain);
+  EXPECT_EQ(chains, (std::set<int>{0, 1}));
+  // The moved grasp is one the search space names, and its saved world reloads to it.
+  EXPECT_TRUE(space->handPose(centredGrasp.values).isApprox(centredGrasp.pose, 1e-9));
+  const Grasp reloaded = analyzeGrasp(graspWorld(request, centredGrasp), 0, request.object);
+  EXPECT_NEAR(reloaded.epsilon, centredGrasp.epsilon, 1e-6 * centredGrasp.epsilon);
+  EXPECT_EQ(static_cast<int>(reloaded.contacts.size()), centredGrasp.contacts);
+  // Closing a fresh world from the moved pre-grasp gives the same grasp again.
+  const Grasp reclosed = remeasure(world, request.object, centredGrasp);
+  EXPECT_NEAR(reclosed.epsilon, centredGrasp.epsilon, 1e-6 * centredGrasp.epsilon);
+}
+
+// A grasp already in force closure is left as it is: the rule only acts on a failed close.
+TEST(CentredClose, ForceClosureGraspIsNotMoved) {
+  World world = loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml");
+  PlanningRequest request;
+  request.world = std::make_shared<World>(world);
+  request.object = BodyRef::body(1);
+  const auto space = makeSearchSpace(request);
+  auto scene = makePlanningScene(request, space);
+  PlannedGrasp grasp;
+  grasp.pose = world.robot(0).pose();
+  grasp.dofs = {0.0};
+  grasp.values = space->encode(grasp.pose, grasp.dofs);
+  closeCentred(*scene, grasp);
+  ASSERT_TRUE(grasp.forceClosure);
+  EXPECT_TRUE(grasp.pose.isApprox(world.robot(0).pose(), 1e-12));
 }
 
 // ---------------------------------------------------------------------------------------------

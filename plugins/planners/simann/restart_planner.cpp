@@ -213,7 +213,7 @@ std::optional<std::vector<PlannedGrasp>> RestartPlanner::restart(
             ? refined(scene, seeds[k], chainSeed(request_.seed ^ 0x5EEDull, at) + k)
             : seeds[k];
     PlannedGrasp grasp = plannedGrasp(*space_, state);
-    finishGrasp(*scene, grasp);
+    closeCentred(*scene, grasp, settings_.centring);
     grasps.push_back(std::move(grasp));
   }
   return grasps;

@@ -32,6 +32,7 @@
 #include <string>
 
 #include "annealing_chain.hpp"
+#include "graspkit/planning/centred_close.hpp"
 #include "graspkit/planning/planner.hpp"
 
 namespace graspkit::simann {
@@ -46,6 +47,9 @@ struct RestartSettings {
   std::int64_t refineSteps = 0;
   RestartStart start = RestartStart::Around;
   double threshold = 0.2;  // distinct final grasps (GraspIt!'s best-list distance)
+  // Each grasp closes with a compliant wrist (centred_close.hpp): up to this many moves of the
+  // open hand towards a finger that closed on nothing.
+  CentringSettings centring;
 
   // Each restart passes through the whole of GraspIt!'s schedule length (40000 steps from K0,
   // hot to frozen) in its searchSteps, unless "stride" sets how far one step advances it.
@@ -57,9 +61,11 @@ struct RestartSettings {
   }
   static constexpr long kGraspItScheduleSteps = 40000;
 
-  // The steps one restart counts for: its search, its refinements, and one per grasp closed.
+  // The steps one restart counts for: its search, its refinements, and one per close it may
+  // take (the first and each centring move), whether or not it takes them.
   std::int64_t cost() const {
-    return searchSteps + static_cast<std::int64_t>(search.bestListSize) * (refineSteps + 1);
+    return searchSteps +
+           static_cast<std::int64_t>(search.bestListSize) * (refineSteps + 1 + centring.moves);
   }
 };
 

@@ -89,6 +89,8 @@ Settings settingsFrom(const PlanningRequest& request) {
       r.start = parseStart(value);
     else if (key == "refine-steps")
       r.refineSteps = whole(key, value, 0, 1e9);
+    else if (key == "centring-moves")
+      r.centring.moves = static_cast<int>(whole(key, value, 0, 100));
     else if (key == "refine-preset")
       r.refine.parameters = preset(value);
     else if (key == "refine-energy")
@@ -104,8 +106,8 @@ Settings settingsFrom(const PlanningRequest& request) {
     } else
       throw Error(fmt::format(
           "simann: unknown option '{}'; known: preset, mode, threshold, "
-          "collision-order, restart-steps, restart-grasps, stride, start, refine-steps, "
-          "refine-preset, refine-energy, refine-jump",
+          "collision-order, restart-steps, restart-grasps, stride, start, centring-moves, "
+          "refine-steps, refine-preset, refine-energy, refine-jump",
           key));
   }
   return s;
