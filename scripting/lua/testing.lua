@@ -95,7 +95,10 @@ show = function(v, depth)
   if math.type(v) == "float" then return show_float(v) end
   if kind == "table" then
     local meta = getmetatable(v)
-    if type(meta) == "table" and rawget(meta, "__tostring") then return tostring(v) end
+    -- A locked metatable (graspkit's poses) shows as its class name: the class prints itself.
+    if type(meta) == "string" or (type(meta) == "table" and rawget(meta, "__tostring")) then
+      return tostring(v)
+    end
     return show_table(v, depth or 1)
   end
   return tostring(v)

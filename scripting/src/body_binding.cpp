@@ -119,8 +119,8 @@ int bodyToString(lua_State* L) {
 }
 
 int bodyEquals(lua_State* L) {
-  const auto* a = static_cast<BoundBody*>(luaL_testudata(L, 1, kBodyClass));
-  const auto* b = static_cast<BoundBody*>(luaL_testudata(L, 2, kBodyClass));
+  const auto* a = testObject<BoundBody>(L, 1, kBodyClass);
+  const auto* b = testObject<BoundBody>(L, 2, kBodyClass);
   lua_pushboolean(L, a != nullptr && b != nullptr && a->world == b->world && a->ref == b->ref);
   return 1;
 }

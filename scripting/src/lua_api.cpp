@@ -126,6 +126,15 @@ std::string toString(lua_State* L, int arg) {
   return std::string(text, length);
 }
 
+// The operating system stops a file name at its first NUL byte, so a name holding one would open
+// another file than the one every check saw.
+std::string toFileName(lua_State* L, int arg) {
+  std::string name = toString(L, arg);
+  if (name.find('\0') != std::string::npos)
+    throw ArgumentError(L, arg, "a file name may not hold a NUL byte");
+  return name;
+}
+
 bool toBoolean(lua_State* L, int arg) {
   if (lua_type(L, arg) != LUA_TBOOLEAN) {
     throw ArgumentError(L, arg, fmt::format("boolean expected, got {}", luaL_typename(L, arg)));
@@ -328,6 +337,8 @@ void defineClass(lua_State* L, const char* name, const luaL_Reg* methods, lua_CF
   }
   lua_pushstring(L, name);
   lua_setfield(L, -2, "__name");
+  lua_pushstring(L, name);
+  lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
 }
 

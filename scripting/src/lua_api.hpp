@@ -43,6 +43,7 @@ int guarded(lua_State* L) {
 double toNumber(lua_State* L, int arg);                   // a finite number
 int toInteger(lua_State* L, int arg);                     // a whole number in int range
 std::string toString(lua_State* L, int arg);              // a string (numbers are not converted)
+std::string toFileName(lua_State* L, int arg);            // a string without NUL bytes
 bool toBoolean(lua_State* L, int arg);                    // true or false
 void checkTable(lua_State* L, int arg);                   // a table
 std::vector<double> toNumberList(lua_State* L, int arg);  // {n1, n2, ...}, every one finite
@@ -74,33 +75,71 @@ void pushNumberList(lua_State* L, std::span<const double> values);
 void pushPose(lua_State* L, const Transform& pose);  // a pose table with the Pose metatable
 void pushStringList(lua_State* L, const std::vector<std::string>& values);
 
-// C++ objects in full userdata: T is constructed in place and destroyed by __gc.
+// C++ objects in full userdata: T is constructed in place and destroyed by __gc. The box records
+// T's type and whether the object still lives, so that a __gc reached some other way than by
+// the collector (scripts cannot reach the metatables, but a host might) destroys only a live T,
+// once, and a method called on a destroyed object is an error, never a use after free.
+template <class T>
+inline const char kObjectTag = 0;
+
+template <class T>
+struct ObjectBox {
+  template <class... Args>
+  explicit ObjectBox(Args&&... args) : object(std::forward<Args>(args)...) {}
+  const void* tag = &kObjectTag<T>;
+  bool alive = true;
+  T object;
+};
+
+// The box at `arg` if it is a full userdata holding a T (alive or not), else null.
+template <class T>
+ObjectBox<T>* boxAt(lua_State* L, int arg) {
+  if (lua_type(L, arg) != LUA_TUSERDATA || lua_rawlen(L, arg) < sizeof(ObjectBox<T>))
+    return nullptr;
+  auto* box = static_cast<ObjectBox<T>*>(lua_touserdata(L, arg));
+  return box->tag == &kObjectTag<T> ? box : nullptr;
+}
+
 template <class T, class... Args>
 T& newObject(lua_State* L, const char* metatable, Args&&... args) {
-  void* memory = lua_newuserdatauv(L, sizeof(T), 0);
-  T* object = new (memory) T(std::forward<Args>(args)...);
+  void* memory = lua_newuserdatauv(L, sizeof(ObjectBox<T>), 0);
+  auto* box = new (memory) ObjectBox<T>(std::forward<Args>(args)...);
   luaL_setmetatable(L, metatable);
-  return *object;
+  return box->object;
 }
 
 template <class T>
 int destroyObject(lua_State* L) {
-  static_cast<T*>(lua_touserdata(L, 1))->~T();
+  if (ObjectBox<T>* box = boxAt<T>(L, 1); box != nullptr && box->alive) {
+    box->alive = false;
+    box->object.~T();
+  }
   return 0;
+}
+
+// The live object at `arg` if it has `metatable`, else null.
+template <class T>
+T* testObject(lua_State* L, int arg, const char* metatable) {
+  if (luaL_testudata(L, arg, metatable) == nullptr) return nullptr;
+  ObjectBox<T>* box = boxAt<T>(L, arg);
+  return box != nullptr && box->alive ? &box->object : nullptr;
 }
 
 // The object at `arg` if it has `metatable`; throws ArgumentError expecting `expected` otherwise.
 template <class T>
 T& toObject(lua_State* L, int arg, const char* metatable, const char* expected) {
-  void* p = luaL_testudata(L, arg, metatable);
-  if (p == nullptr) {
+  if (luaL_testudata(L, arg, metatable) == nullptr) {
     throw ArgumentError(L, arg, std::string(expected) + " expected, got " + luaL_typename(L, arg));
   }
-  return *static_cast<T*>(p);
+  ObjectBox<T>* box = boxAt<T>(L, arg);
+  if (box == nullptr || !box->alive)
+    throw ArgumentError(L, arg, std::string(expected) + " expected, got a destroyed one");
+  return box->object;
 }
 
 // Makes metatable `name` with `methods` reachable through __index, plus the given metamethods
-// (each may be null).
+// (each may be null). The metatable is locked: getmetatable() on an object gives the class name,
+// not the table, so no script can call __gc or change a method.
 void defineClass(lua_State* L, const char* name, const luaL_Reg* methods, lua_CFunction gc,
                  lua_CFunction tostring, lua_CFunction eq = nullptr);
 

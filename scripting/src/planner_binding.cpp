@@ -490,13 +490,13 @@ int plannerToString(lua_State* L) {
 
 // Releases the Lua energy's references, then the C++ object.
 int collectPlanner(lua_State* L) {
-  auto* bound = static_cast<BoundPlanner*>(lua_touserdata(L, 1));
+  BoundPlanner* bound = testObject<BoundPlanner>(L, 1, kPlannerClass);
+  if (bound == nullptr) return 0;  // not a live planner
   if (bound->luaEnergy) {
     luaL_unref(L, LUA_REGISTRYINDEX, bound->luaEnergy->function);
     luaL_unref(L, LUA_REGISTRYINDEX, bound->luaEnergy->context);
   }
-  bound->~BoundPlanner();
-  return 0;
+  return destroyObject<BoundPlanner>(L);
 }
 
 }  // namespace

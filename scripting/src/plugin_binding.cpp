@@ -62,7 +62,7 @@ bool inFolder(const fs::path& file, const fs::path& folder) {
 // installation already trusts; no --allow-read is needed for them). --unsafe loads any file.
 int loadPlugin(lua_State* L) {
   const ScriptContext& context = scriptContext(L);
-  const std::string name = toString(L, 1);
+  const std::string name = toFileName(L, 1);
   PluginLoader& loader = Registry::global().plugins();
   fs::path file = fs::absolute(fs::path(name));
   if (context.paths.restricted()) {

@@ -94,6 +94,10 @@ void openPoseFunctions(lua_State* L) {
   lua_setfield(L, -2, "__tostring");
   lua_pushcfunction(L, guarded<compose>);
   lua_setfield(L, -2, "__mul");
+  // Locked, as the classes' are: a script that could reach this shared table could give every
+  // pose made afterwards a finalizer, which runs where no time limit reaches.
+  lua_pushliteral(L, "graspkit.Pose");
+  lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
   const luaL_Reg functions[] = {
       {"pose", guarded<pose>},

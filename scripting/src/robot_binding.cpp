@@ -318,8 +318,8 @@ int robotToString(lua_State* L) {
 }
 
 int robotEquals(lua_State* L) {
-  const auto* a = static_cast<BoundRobot*>(luaL_testudata(L, 1, kRobotClass));
-  const auto* b = static_cast<BoundRobot*>(luaL_testudata(L, 2, kRobotClass));
+  const auto* a = testObject<BoundRobot>(L, 1, kRobotClass);
+  const auto* b = testObject<BoundRobot>(L, 2, kRobotClass);
   lua_pushboolean(L, a != nullptr && b != nullptr && a->world == b->world && a->index == b->index);
   return 1;
 }

@@ -10,6 +10,7 @@
 #include <lua.hpp>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "lua_api.hpp"
 
 namespace graspkit::lua {
@@ -114,15 +115,29 @@ PathPolicy::PathPolicy(std::vector<fs::path> readable, std::vector<fs::path> wri
   for (const fs::path& folder : writable_) addFolder(readable_, folder);
 }
 
+namespace {
+
+void refuseNul(const fs::path& file) {
+  if (!holdsNul(file)) return;
+  std::string shown = file.string();
+  std::replace(shown.begin(), shown.end(), '\0', '?');
+  throw Error(SourceLocation{shown}, "sandbox: the path holds a NUL byte");
+}
+
+}  // namespace
+
+// A path with a NUL byte is refused even unrestricted: the operating system would open only the
+// part before the NUL, which is not the path that was checked.
 bool PathPolicy::mayRead(const fs::path& file) const {
-  return !restricted_ || isBelowAny(file, readable_);
+  return !holdsNul(file) && (!restricted_ || isBelowAny(file, readable_));
 }
 
 bool PathPolicy::mayWrite(const fs::path& file) const {
-  return !restricted_ || isBelowAny(file, writable_);
+  return !holdsNul(file) && (!restricted_ || isBelowAny(file, writable_));
 }
 
 void PathPolicy::checkRead(const fs::path& file) const {
+  refuseNul(file);
   if (mayRead(file)) return;
   throw Error(SourceLocation{file.string()},
               fmt::format("sandbox: reading is not allowed outside {} (use --allow-read DIR or "
@@ -131,6 +146,7 @@ void PathPolicy::checkRead(const fs::path& file) const {
 }
 
 void PathPolicy::checkWrite(const fs::path& file) const {
+  refuseNul(file);
   if (mayWrite(file)) return;
   throw Error(SourceLocation{file.string()},
               fmt::format("sandbox: writing is not allowed outside {} (use --allow-write DIR or "

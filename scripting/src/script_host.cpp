@@ -4,8 +4,10 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "json_value.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
@@ -182,7 +184,13 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   }
   context_->timeLimitReached = false;
   context_->exitStatus.reset();
+  // Whatever the engine reads for the script (the geometry a model file names, a planner's
+  // state file) is subject to the script's read policy, not only the file the script named.
+  std::optional<ScopedReadGuard> readGuard;
+  if (context_->paths.restricted())
+    readGuard.emplace([&paths = context_->paths](const fs::path& file) { paths.checkRead(file); });
   int status = lua_pcall(L_, nargs, nresults, function);
+  readGuard.reset();
   watchdog.reset();
   const bool timed_out =
       context_->timeLimitReached || (status != LUA_OK && context_->deadline &&

@@ -23,7 +23,7 @@ WorldHandle& toWorldHandle(lua_State* L, int arg) {
 
 int loadWorld(lua_State* L) {
   ScriptContext& context = scriptContext(L);
-  const std::filesystem::path file = context.inputPath(toString(L, 1));
+  const std::filesystem::path file = context.inputPath(toFileName(L, 1));
   auto handle = std::make_shared<ScriptWorld>();
   handle->world = loadAnyFile(file, context.options.load, &context.cache);
   handle->file = file;
@@ -39,7 +39,7 @@ int newWorld(lua_State* L) {
 int addBody(lua_State* L, BodyKind kind) {
   ScriptWorld& world = *toWorldHandle(L, 1);
   ScriptContext& context = scriptContext(L);
-  const std::filesystem::path file = context.inputPath(toString(L, 2));
+  const std::filesystem::path file = context.inputPath(toFileName(L, 2));
   const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
   Body body;
   body.model = loadBodyFile(file, &context.cache);
@@ -61,7 +61,7 @@ int addObject(lua_State* L) {
 int addRobot(lua_State* L) {
   ScriptWorld& world = *toWorldHandle(L, 1);
   ScriptContext& context = scriptContext(L);
-  const std::filesystem::path file = context.inputPath(toString(L, 2));
+  const std::filesystem::path file = context.inputPath(toFileName(L, 2));
   const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
   const int index =
       world.world.addRobot(Robot(loadRobotFile(file, context.options.load, &context.cache)));
@@ -72,7 +72,7 @@ int addRobot(lua_State* L) {
 
 int save(lua_State* L) {
   ScriptWorld& world = *toWorldHandle(L, 1);
-  const std::filesystem::path file = scriptContext(L).outputPath(toString(L, 2));
+  const std::filesystem::path file = scriptContext(L).outputPath(toFileName(L, 2));
   saveWorldFile(world.world, file, SaveOptions{.root = file.parent_path()});
   world.file = file;
   return 0;

@@ -284,5 +284,40 @@ TEST_F(LuaBinding, PluginsListTheRobotPluginsAndTheSandboxGuardsLoading) {
   EXPECT_NE(refused.message.find("plugin search path"), std::string::npos) << refused.message;
 }
 
+// A C++ object in userdata is destroyed once, and only as its own type: __gc called again, or on
+// another class's object, or on a number, does nothing; a destroyed object is refused by name.
+TEST(LuaObjects, DestroyIsOnceAndTypeChecked) {
+  using namespace graspkit::lua;
+  lua_State* L = luaL_newstate();
+  const luaL_Reg none[] = {{nullptr, nullptr}};
+  defineClass(L, "test.Text", none, destroyObject<std::string>, nullptr);
+  defineClass(L, "test.Number", none, destroyObject<double>, nullptr);
+  newObject<std::string>(L, "test.Text", std::string(100, 'x'));  // heap-allocated text
+  const int text = lua_gettop(L);
+  newObject<double>(L, "test.Number", 2.5);
+  const int number = lua_gettop(L);
+  auto destroy = [&](lua_CFunction gc, int arg) {
+    lua_pushcfunction(L, gc);
+    lua_pushvalue(L, arg);
+    ASSERT_EQ(lua_pcall(L, 1, 0, 0), LUA_OK);
+  };
+  destroy(destroyObject<double>, text);  // a Text is no double: untouched
+  EXPECT_EQ(toObject<std::string>(L, text, "test.Text", "Text"), std::string(100, 'x'));
+  destroy(destroyObject<std::string>, text);
+  destroy(destroyObject<std::string>,
+          text);  // a second time: nothing (ASan would see a double free)
+  EXPECT_EQ(testObject<std::string>(L, text, "test.Text"), nullptr);
+  try {
+    toObject<std::string>(L, text, "test.Text", "Text");
+    ADD_FAILURE() << "a destroyed object was accepted";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("destroyed"), std::string::npos) << e.what();
+  }
+  lua_pushnumber(L, 7.0);
+  destroy(destroyObject<std::string>, lua_gettop(L));  // not userdata at all
+  EXPECT_EQ(toObject<double>(L, number, "test.Number", "Number"), 2.5);
+  lua_close(L);  // collects both: the destroyed Text is not destroyed again
+}
+
 }  // namespace
 }  // namespace graspkit

@@ -420,6 +420,68 @@ TEST_F(LuaSandbox, FinalizersAreRefused) {
   expectOk(run("assert(getmetatable(setmetatable({}, {__index = {x = 1}})).__index.x == 1)"));
 }
 
+// --- Paths with NUL bytes, files that model files name, userdata ---------------------------------
+
+// The OS opens a path only up to its first NUL byte; the check would see all of it. Here the
+// whole string normalises into the script's folder while its head names a file outside.
+TEST_F(LuaSandbox, PathsWithNulBytesAreRefused) {
+  writeFile(outside_ / "w.xml", "<world></world>");
+  const std::string tail = R"(\0/../../scripts/own.txt')";
+  const std::string head = "'" + (outside_ / "w.xml").string();
+  expectRefused(run("graspkit.load_world(" + head + tail + ")"), {"load_world", "NUL"});
+  expectRefused(run("graspkit.new_world():add_object(" + head + tail + ")"), {"NUL"});
+  const std::string made = "'" + (outside_ / "made.xml").string();
+  expectRefused(run("graspkit.new_world():save(" + made + tail + ")"), {"save", "NUL"});
+  EXPECT_FALSE(fs::exists(outside_ / "made.xml"));
+  expectRefused(run("io.open(" + made + tail + ", 'w')"), {"io.open"});
+  EXPECT_FALSE(fs::exists(outside_ / "made.xml"));
+  // Refused under --unsafe too: such a path names no file anyone meant.
+  expectRefused(run("graspkit.load_world(" + head + tail + ")", unsafe()), {"NUL"});
+}
+
+// A script may write a model file into its folder; the files that model names (geometry, robot,
+// eigengrasps) are read under the same policy, and the refusal quotes nothing from them.
+TEST_F(LuaSandbox, FilesNamedByModelFilesObeyThePolicy) {
+  writeFile(outside_ / "secret.iv", "TOP-SECRET-CONTENT line two\n");
+  const std::string body = "<root><material>plastic</material><geometryFile type=\"Inventor\">" +
+                           (outside_ / "secret.iv").string() + "</geometryFile></root>";
+  const std::string write =
+      fmt::format("local f = assert(io.open({}, 'w')) f:write({}) f:close()\n",
+                  lit(scripts_ / "evil.xml"), "[==[" + body + "]==]");
+  const ScriptOutcome outcome =
+      run(write + "graspkit.new_world():add_object('" + (scripts_ / "evil.xml").string() + "')");
+  expectRefused(outcome, {"reading is not allowed", (outside_ / "secret.iv").string()});
+  EXPECT_EQ(outcome.message.find("TOP-SECRET"), std::string::npos) << outcome.message;
+  // A world file naming a body outside, relative to the world's folder.
+  writeFile(outside_ / "hidden.xml", body);
+  writeFile(scripts_ / "world.xml",
+            "<world><graspableBody><filename>../outside/hidden.xml</filename></graspableBody>"
+            "</world>");
+  expectRefused(run("graspkit.load_world('" + (scripts_ / "world.xml").string() + "')"),
+                {"reading is not allowed", "hidden.xml"});
+  // Under --unsafe the same files are read: the refusal above is the policy, not a missing file.
+  const ScriptOutcome open =
+      run(write + "graspkit.new_world():add_object('" + (scripts_ / "evil.xml").string() + "')",
+          unsafe());
+  EXPECT_EQ(open.message.find("reading is not allowed"), std::string::npos) << open.message;
+  EXPECT_NE(open.message.find("not an Inventor or VRML file"), std::string::npos) << open.message;
+}
+
+// Userdata metatables are locked: a script cannot reach __gc to destroy a live object, nor the
+// methods table to change it; the shared Pose metatable cannot be given a finalizer.
+TEST_F(LuaSandbox, MetatablesAreLocked) {
+  expectOk(run(R"(
+    local w = graspkit.new_world()
+    assert(getmetatable(w) == 'graspkit.World', tostring(getmetatable(w)))
+    assert(w.__gc == nil and w.__index == nil)
+    assert(not pcall(setmetatable, w, {}))
+    local p = graspkit.pose({1, 2, 3}, {1, 0, 0, 0})
+    assert(getmetatable(p) == 'graspkit.Pose', tostring(getmetatable(p)))
+    assert(not pcall(setmetatable, p, {__gc = function() end}))
+    assert(#w:bodies() == 0)  -- the world still works
+  )"));
+}
+
 // --- The time limit ----------------------------------------------------------------------------
 
 class LuaTimeLimit : public LuaSandbox {

@@ -14,6 +14,7 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 
 namespace graspkit::detail {
 namespace {
@@ -41,17 +42,6 @@ const char* formatHint(MeshFormat format) {
     default:
       return "";
   }
-}
-
-std::string readBytes(const std::filesystem::path& path, const SourceLocation& where) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(where, "cannot open the file for reading");
-  std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
-    throw Error(where, "read error");
-  }
-  return bytes;
 }
 
 void appendMesh(const aiMesh& source, const SourceLocation& where, TriangleMesh& mesh) {
@@ -85,7 +75,7 @@ void appendMesh(const aiMesh& source, const SourceLocation& where, TriangleMesh&
 TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat format) {
   const SourceLocation where = locationIn(path.string());
   // Read from memory: the geometry is all we keep, so an OBJ's material library is not needed.
-  const std::string bytes = readBytes(path, where);
+  const std::string bytes = readInputFile(path);
   if (bytes.empty()) throw Error(where, "the file is empty");
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, kRemovedComponents);

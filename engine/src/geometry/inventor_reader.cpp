@@ -15,7 +15,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -39,6 +38,7 @@
 #include "geometry/inventor_shape_check.hpp"
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mesh_loader.hpp"
 
@@ -309,17 +309,6 @@ class SceneTextCheck {
   int depth_ = 0;
 };
 
-std::string readText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(detail::locationIn(path.string()), "cannot open the file for reading");
-  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) {
-    throw Error(detail::locationIn(path.string()), "read error");
-  }
-  return text;
-}
-
 // Parses the scene; Coin's diagnostics (with their line) become the error on failure.
 SoSeparator* readScene(std::string_view text, const std::string& file,
                        const std::vector<std::string>& messages) {
@@ -428,7 +417,7 @@ namespace detail {
 TriangleMesh readInventor(const std::filesystem::path& path) {
   initInventorReader();
   const std::string file = path.string();
-  const std::string text = readText(path);
+  const std::string text = readInputFile(path);
   SceneTextCheck(text, file).run();
   std::vector<std::string> messages;
   TriangleCollector collector;

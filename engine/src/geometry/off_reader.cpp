@@ -11,9 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +20,7 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/mesh_loader.hpp"
 
 namespace graspkit {
@@ -263,12 +262,8 @@ TriangleMesh parseOff(std::string_view text, const std::string& file) {
 namespace detail {
 
 TriangleMesh readOff(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(detail::locationIn(path.string()), "cannot open the file for reading");
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw Error(detail::locationIn(path.string()), "read error");
-  return parseOff(content.view(), path.string());
+  const std::string content = readInputFile(path);
+  return parseOff(content, path.string());
 }
 
 }  // namespace detail

@@ -6,16 +6,14 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/log.hpp"
 
 namespace graspkit::xml {
 
 Document::Document(const std::filesystem::path& file) : file_(file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw Error(SourceLocation{file.string()}, "file not found");
-  }
-  if (doc_.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+  const std::string text = readInputFile(file);
+  if (doc_.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     const int line = doc_.ErrorLineNum();
     const std::string detail = doc_.ErrorStr() ? doc_.ErrorStr() : "parse error";
     // For an unclosed or mismatched tag tinyxml2 names the element ("XMLElement name=dof") and

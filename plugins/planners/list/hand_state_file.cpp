@@ -1,4 +1,5 @@
 #include "hand_state_file.hpp"
+#include "graspkit/io/input_file.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -57,11 +58,10 @@ HandState handState(const json& entry, std::string& problem) {
 }  // namespace
 
 std::vector<HandState> readHandStates(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw Error(fmt::format("list: cannot read hand-state file {}", file.string()));
+  const std::string text = readInputFile(file);
   json document;
   try {
-    document = json::parse(in);
+    document = json::parse(text);
   } catch (const json::exception& e) {
     throw Error(fmt::format("list: {}: not JSON: {}", file.string(), e.what()));
   }
