@@ -50,6 +50,7 @@ std::optional<Vector3> centringMove(const PlanningScene& scene, const PlannedGra
 void closeCentred(PlanningScene& scene, PlannedGrasp& grasp, const CentringSettings& settings) {
   finishGrasp(scene, grasp);
   for (int move = 0; move < settings.moves && !grasp.forceClosure; ++move) {
+    if (settings.keepGoing && !settings.keepGoing()) return;
     const std::optional<Vector3> shift = centringMove(scene, grasp);
     if (!shift || shift->norm() < 1e-6) return;
     PlannedGrasp moved = grasp;

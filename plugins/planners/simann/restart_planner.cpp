@@ -213,7 +213,9 @@ std::optional<std::vector<PlannedGrasp>> RestartPlanner::restart(
             ? refined(scene, seeds[k], chainSeed(request_.seed ^ 0x5EEDull, at) + k)
             : seeds[k];
     PlannedGrasp grasp = plannedGrasp(*space_, state);
-    closeCentred(*scene, grasp, settings_.centring);
+    CentringSettings centring = settings_.centring;
+    centring.keepGoing = keepGoing;
+    closeCentred(*scene, grasp, centring);
     grasps.push_back(std::move(grasp));
   }
   return grasps;

@@ -11,6 +11,8 @@
 // The moved grasp replaces the first only when betterGrasp() ranks it higher, so the rule never
 // makes a grasp worse.
 
+#include <functional>
+
 #include "graspkit/planning/planner.hpp"
 
 namespace graspkit {
@@ -19,6 +21,8 @@ class PlanningScene;
 
 struct CentringSettings {
   int moves = 3;  // the most moves of the open hand (0: a plain finishGrasp)
+  // Asked before each move; false stops the moves (a time budget running out).
+  std::function<bool()> keepGoing;
 };
 
 // finishGrasp(), then up to `settings.moves` centring moves while the grasp is not force
