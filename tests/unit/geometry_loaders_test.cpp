@@ -3,14 +3,22 @@
 // Truths: hand-counted triangles, closed-form volumes, and GraspIt!'s own triangle counts for
 // its models (reference/graspit-figures.json).
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -393,6 +401,27 @@ INSTANTIATE_TEST_SUITE_P(
                  "#Inventor V2.1 ascii\nDEF a Separator { Cube {} USE a }\n", 0, "cycle"},
         BadScene{"FileNode", "file.iv", "#Inventor V2.1 ascii\nFile { name \"other.iv\" }\n", 2,
                  "File nodes"},
+        // Whatever Coin takes for a blank between the type and its brace hides nothing.
+        BadScene{"FileNodeBehindComment", "file_comment.iv",
+                 "#Inventor V2.1 ascii\nFile # a comment\n{ name \"other.iv\" }\n", 2,
+                 "File nodes"},
+        BadScene{"FileNodeBehindFormFeed", "file_ff.iv",
+                 "#Inventor V2.1 ascii\nFile\f{ name \"other.iv\" }\n", 2, "File nodes"},
+        BadScene{"FileNodeBehindComma", "file_comma.iv",
+                 "#Inventor V2.1 ascii\nFile , { name \"other.iv\" }\n", 2, "File nodes"},
+        BadScene{"SoFileSpelling", "sofile.iv",
+                 "#Inventor V2.1 ascii\nSeparator {\n SoFile { name \"other.iv\" }\n}\n", 3,
+                 "SoFile nodes"},
+        BadScene{"VrmlInline", "inline.wrl", "#VRML V2.0 utf8\nInline { url \"other.wrl\" }\n", 2,
+                 "Inline nodes"},
+        BadScene{"Vrml1WwwInline", "wwwinline.wrl",
+                 "#VRML V1.0 ascii\nWWWInline { name \"other.wrl\" }\n", 2, "WWWInline nodes"},
+        BadScene{"ExternProto", "extern.wrl",
+                 "#VRML V2.0 utf8\nEXTERNPROTO Thing [ ] \"other.wrl\"\nThing { }\n", 2,
+                 "EXTERNPROTO"},
+        BadScene{"FontNode", "font.iv",
+                 "#Inventor V2.1 ascii\nFont { name \"/dev/zero\" }\nText3 { string \"a\" }\n", 2,
+                 "node type 'Font' is not supported"},
         BadScene{"Nurbs", "nurbs.iv",
                  "#Inventor V2.1 ascii\nCoordinate3 { point [ 0 0 0, 1 0 0, 0 1 0, 1 1 0 ] }\n"
                  "NurbsSurface { numUControlPoints 2 numVControlPoints 2 uKnotVector [ 0 0 1 1 ] "
@@ -407,6 +436,58 @@ TEST(InventorLoader, DeepNestingIsRejectedBeforeCoinRecurses) {
   const fs::path path = writeFile(test::scratchDir(), "deep.iv", text);
   expectLocatedError(expectError([&] { loadMesh(path); }), path.string(), 1002,
                      "nesting deeper than 1000 levels");
+}
+
+// An Array of spheres multiplies a few bytes into millions of shapes: bounded by the node and
+// triangle limits, never by the machine's memory.
+TEST(InventorLoader, AmplifyingArrayIsRejected) {
+  const fs::path path = writeFile(
+      test::scratchDir(), "array.iv",
+      "#Inventor V2.1 ascii\nComplexity { value 1 }\nArray { numElements1 1000 numElements2 1000 "
+      "numElements3 100 Sphere { } }\n");
+  expectLocatedError(expectError([&] { loadMesh(path); }), path.string(), 0, "more than");
+}
+
+// Coin builds an extrusion's whole surface at once: its size is checked before.
+TEST(InventorLoader, HugeExtrusionIsRejected) {
+  std::string text = "#VRML V2.0 utf8\nShape { geometry Extrusion { crossSection [";
+  for (int i = 0; i < 3000; ++i)
+    text += fmt::format(" {} {},", std::cos(i * 0.002), std::sin(i * 0.002));
+  text += " ] spine [";
+  for (int i = 0; i < 2000; ++i) text += fmt::format(" 0 {} 0,", i);
+  text += " ] } }\n";
+  const fs::path path = writeFile(test::scratchDir(), "extrusion.wrl", text);
+  expectLocatedError(expectError([&] { loadMesh(path); }), path.string(), 0,
+                     "more than 5000000 quadrilaterals");
+}
+
+// A texture's file name is blanked before Coin parses (textures are never used): a FIFO there
+// would block Coin's image loader forever. A writer opens the FIFO after 5 s to free a blocked
+// reader, so a regression fails the test instead of hanging it.
+TEST(InventorLoader, TextureFileNamesAreNeverOpened) {
+  const fs::path fifo = test::scratchDir() / "texture.fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path path = writeFile(test::scratchDir(), "texture.iv",
+                                  "#Inventor V2.1 ascii\nSeparator {\n Texture2 { filename \"" +
+                                      fifo.string() + "\" }\n Cube { }\n}\n");
+  std::atomic<bool> loaded{false};
+  std::thread unblock([&] {
+    for (int i = 0; i < 50 && !loaded; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!loaded) {
+      const int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) close(fd);
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  TriangleMesh mesh;
+  EXPECT_NO_THROW(mesh = loadMesh(path));
+  loaded = true;
+  unblock.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(4));
+  EXPECT_EQ(mesh.triangles.size(), 12u);  // the cube
+  fs::remove(fifo);
 }
 
 TEST(InventorLoader, SelfMultiplyingSceneIsRejected) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -148,10 +149,16 @@ class VertexWelder {
   std::vector<std::uint32_t> slots_;
 };
 
+// A scene may multiply its shapes (Array, USE, long Text3, a dense Extrusion) far beyond what
+// its text size suggests; past this many triangles the load stops with an error, so memory and
+// time stay bounded. GraspIt!'s largest models hold about 100,000.
+constexpr std::size_t kMaxTriangles = 10'000'000;
+
 struct TriangleCollector {
   VertexWelder welder;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   bool non_finite = false;
+  bool too_many = false;
 };
 
 double determinant3x3(const SbMatrix& m) {
@@ -163,6 +170,10 @@ double determinant3x3(const SbMatrix& m) {
 void onTriangle(void* data, SoCallbackAction* action, const SoPrimitiveVertex* v1,
                 const SoPrimitiveVertex* v2, const SoPrimitiveVertex* v3) {
   auto& collector = *static_cast<TriangleCollector*>(data);
+  if (collector.triangles.size() >= kMaxTriangles) {
+    collector.too_many = true;
+    return;
+  }
   const SbMatrix& model = action->getModelMatrix();
   std::array<CornerKey, 3> corners;
   const SoPrimitiveVertex* sources[3] = {v1, v2, v3};
@@ -231,16 +242,76 @@ bool isPlain(char c) {
          c == '\r';
 }
 
+// Node types Coin may build from a file we read, by their name without the "So", "SoVRML" or
+// "VRML" prefix Coin also accepts: the grouping, transform, property and shape nodes of
+// Inventor 2.1, VRML 1.0 and VRML97, and harmless viewer nodes. Deny by default: any other type
+// (File, Inline and WWWInline, which read other files; Font and FontStyle, whose names Coin may
+// open as font files; Script, AudioClip, MovieTexture; types a PROTO or a `fields` list declares)
+// is refused before Coin sees the text.
+bool isAllowedNodeType(std::string_view type) {
+  static constexpr std::string_view kAllowed[] = {
+      // Grouping
+      "Separator", "Group", "Switch", "TransformSeparator", "Annotation", "LevelOfDetail", "LOD",
+      "Transform", "Collision", "Billboard", "Anchor", "Array", "MultipleCopy", "Selection",
+      // Transforms
+      "Translation", "Rotation", "RotationXYZ", "Scale", "MatrixTransform", "ResetTransform",
+      "Units", "AntiSquish", "Texture2Transform", "TextureTransform",
+      // Properties
+      "Material", "BaseColor", "PackedColor", "MaterialBinding", "Normal", "NormalBinding",
+      "Coordinate3", "Coordinate4", "Coordinate", "VertexProperty", "ShapeHints", "Complexity",
+      "DrawStyle", "LightModel", "Texture2", "ImageTexture", "PixelTexture", "TextureCoordinate2",
+      "TextureCoordinate", "TextureCoordinateBinding", "TextureCoordinateDefault", "Color",
+      "Appearance", "Info", "WorldInfo", "Label", "EventCallback", "PickStyle", "Environment",
+      "Fog",
+      // Shapes
+      "Cube", "Cone", "Cylinder", "Sphere", "Box", "FaceSet", "IndexedFaceSet", "TriangleStripSet",
+      "IndexedTriangleStripSet", "QuadMesh", "IndexedLineSet", "LineSet", "PointSet",
+      "IndexedPointSet", "Shape", "ElevationGrid", "Extrusion", "Text2", "Text3", "AsciiText",
+      "Text",
+      // Cameras, lights, sensors and interpolators (ignored, harmless)
+      "PerspectiveCamera", "OrthographicCamera", "Viewpoint", "NavigationInfo", "Background",
+      "DirectionalLight", "PointLight", "SpotLight", "TimeSensor", "TouchSensor", "ProximitySensor",
+      "VisibilitySensor", "PlaneSensor", "CylinderSensor", "SphereSensor", "PositionInterpolator",
+      "OrientationInterpolator", "ScalarInterpolator", "ColorInterpolator",
+      "CoordinateInterpolator", "NormalInterpolator"};
+  return std::find(std::begin(kAllowed), std::end(kAllowed), type) != std::end(kAllowed);
+}
+
+bool isUpper(char c) {
+  return c >= 'A' && c <= 'Z';
+}
+
+// "SoVRMLInline", "VRMLInline" and "SoInline" all name Coin's Inline.
+std::string_view withoutCoinPrefix(std::string_view type) {
+  for (std::string_view prefix : {"SoVRML", "VRML", "So"}) {
+    if (type.size() > prefix.size() && type.starts_with(prefix) && isUpper(type[prefix.size()]))
+      return type.substr(prefix.size());
+  }
+  return type;
+}
+
+// Fields whose strings name files Coin would open while it parses (texture images, anchors,
+// backgrounds). Textures are never used, so their names are blanked rather than refused.
+bool namesFiles(std::string_view field) {
+  static constexpr std::string_view kFields[] = {"filename", "url",     "backUrl",  "bottomUrl",
+                                                 "frontUrl", "leftUrl", "rightUrl", "topUrl"};
+  return std::find(std::begin(kFields), std::end(kFields), field) != std::end(kFields);
+}
+
 // Checks what Coin cannot be trusted with before it sees the text: binary files, nesting deep
-// enough to overflow its recursive parser, and File and Inline nodes, which make it read other
-// files that this check never sees.
+// enough to overflow its recursive parser, node types outside isAllowedNodeType() (File and
+// Inline above all, which make Coin read files this check never sees), and file names in
+// fields, which are blanked. The text is tokenised as Coin does: blanks include form feeds and
+// commas, comments run to the end of the line, strings are skipped whole.
 class SceneTextCheck {
  public:
   SceneTextCheck(std::string_view text, const std::string& file) : text_(text), file_(file) {}
 
-  void run() {
+  // The text Coin may read: the file's own, or a copy with file names blanked.
+  std::string_view run() {
     checkHeader();
     while (pos_ < text_.size()) step();
+    return edited_ ? std::string_view(*edited_) : text_;
   }
 
  private:
@@ -256,6 +327,10 @@ class SceneTextCheck {
     if (first_line.find("binary") != std::string_view::npos) {
       fail("binary Inventor files are not supported; convert the file to ASCII");
     }
+  }
+
+  static bool isBlank(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == ',';
   }
 
   void step() {
@@ -291,19 +366,72 @@ class SceneTextCheck {
     ++pos_;
   }
 
+  // The position of the next character that is neither blank nor comment, from `at`; lines are
+  // not counted (the caller does not move there).
+  std::size_t nextToken(std::size_t at) const {
+    while (at < text_.size()) {
+      if (isBlank(text_[at])) {
+        ++at;
+      } else if (text_[at] == '#') {
+        at = std::min(text_.find('\n', at), text_.size());
+      } else {
+        break;
+      }
+    }
+    return at;
+  }
+
   void checkWord() {
     const std::size_t start = pos_;
     while (pos_ < text_.size() && (isWordStart(text_[pos_]) || isDigit(text_[pos_]))) ++pos_;
     const std::string_view word = text_.substr(start, pos_ - start);
-    if (word != "File" && word != "Inline") return;
-    const std::size_t next = text_.find_first_not_of(" \t\r\n", pos_);
-    if (next != std::string_view::npos && text_[next] == '{') {
+    if (word == "EXTERNPROTO") fail("EXTERNPROTO, which reads other files, is not supported");
+    const std::size_t next = nextToken(pos_);
+    if (next < text_.size() && text_[next] == '{') {
+      checkNodeType(word);
+    } else if (namesFiles(word)) {
+      blankStrings(next);
+    }
+  }
+
+  void checkNodeType(std::string_view word) const {
+    const std::string_view type = withoutCoinPrefix(word);
+    if (type == "File" || type == "Inline" || type == "WWWInline") {
       fail(fmt::format("{} nodes, which read other files, are not supported", word));
+    }
+    if (!isAllowedNodeType(type)) {
+      fail(
+          fmt::format("node type '{}' is not supported (graspkit reads the geometry, grouping, "
+                      "transform and property nodes of Inventor and VRML)",
+                      word));
+    }
+  }
+
+  // Empties the string at `at`, or each string of the list that starts there, in the copy.
+  void blankStrings(std::size_t at) {
+    const bool list = at < text_.size() && text_[at] == '[';
+    if (list) at = nextToken(at + 1);
+    while (at < text_.size() && text_[at] == '"') {
+      if (!edited_) edited_.emplace(text_);
+      std::size_t end = at + 1;
+      for (; end < text_.size() && text_[end] != '"'; ++end) {
+        if (text_[end] == '\\') ++end;
+      }
+      // Keep the line breaks, so that Coin's line numbers stay those of the file.
+      for (std::size_t i = at + 1; i < end && i < text_.size(); ++i)
+        if ((*edited_)[i] != '\n') (*edited_)[i] = ' ';
+      if (end < text_.size()) {
+        (*edited_)[at + 1] = '"';  // "" followed by blanks
+        if (end > at + 1) (*edited_)[end] = ' ';
+      }
+      if (!list) return;
+      at = nextToken(end + 1);
     }
   }
 
   std::string_view text_;
   const std::string& file_;
+  std::optional<std::string> edited_;
   std::size_t pos_ = 0;
   int line_ = 1;
   int depth_ = 0;
@@ -326,6 +454,7 @@ SoSeparator* readScene(std::string_view text, const std::string& file,
 
 // State for the pre/post callbacks that guard Coin's traversal.
 struct TraversalGuard {
+  const TriangleCollector* collector = nullptr;
   std::int64_t visits = 0;
   int depth = 0;
   std::string problem;  // set when the traversal was aborted
@@ -342,6 +471,7 @@ void skipNormalGeneration(SoCallbackAction& action, SoNode& shape) {
 
 SoCallbackAction::Response beforeNode(void* data, SoCallbackAction* action, const SoNode* node) {
   auto& guard = *static_cast<TraversalGuard*>(data);
+  if (guard.collector->too_many) return SoCallbackAction::ABORT;
   if (++guard.visits > kMaxNodeVisits) {
     guard.problem = fmt::format("the scene graph expands to more than {} nodes", kMaxNodeVisits);
     return SoCallbackAction::ABORT;
@@ -393,12 +523,17 @@ TriangleCollector collectTriangles(SoSeparator* root, const std::string& file) {
   const SceneReference scene(root);
   TriangleCollector collector;
   TraversalGuard guard;
+  guard.collector = &collector;
   SoCallbackAction action;
   action.addPreCallback(SoNode::getClassTypeId(), beforeNode, &guard);
   action.addPostCallback(SoNode::getClassTypeId(), afterNode, &guard);
   action.addTriangleCallback(SoShape::getClassTypeId(), onTriangle, &collector);
   action.apply(scene.get());
   if (!guard.problem.empty()) throw Error(detail::locationIn(file), guard.problem);
+  if (collector.too_many) {
+    throw Error(detail::locationIn(file),
+                fmt::format("the scene expands to more than {} triangles", kMaxTriangles));
+  }
   return collector;
 }
 
@@ -418,13 +553,14 @@ TriangleMesh readInventor(const std::filesystem::path& path) {
   initInventorReader();
   const std::string file = path.string();
   const std::string text = readInputFile(path);
-  SceneTextCheck(text, file).run();
+  SceneTextCheck check(text, file);
+  const std::string_view checked = check.run();
   std::vector<std::string> messages;
   TriangleCollector collector;
   {
     std::lock_guard lock(coin_mutex);
     CoinMessageCapture capture(messages);
-    collector = collectTriangles(readScene(text, file, messages), file);
+    collector = collectTriangles(readScene(checked, file, messages), file);
   }
   const SourceLocation where = locationIn(file);
   if (collector.non_finite) throw Error(where, "a vertex has a non-finite coordinate");

@@ -74,6 +74,8 @@ bool yieldsNoTriangles(const SoNode& node) {
                       SoVRMLVertexPoint::getClassTypeId(), SoVRMLIndexedLine::getClassTypeId()});
 }
 
+constexpr std::int64_t kMaxExtrusionQuads = 5'000'000;
+
 // Shapes tessellated from their own fields only, which Coin handles for any values.
 bool isParametric(const SoNode& node) {
   return isOfAnyType(
@@ -227,6 +229,18 @@ bool pruneAppearance(SoNode& node) {
 
 ShapeVerdict checkShape(SoCallbackAction& action, SoNode& shape) {
   if (yieldsNoTriangles(shape)) return {ShapeVerdict::Skip, {}};
+  if (shape.isOfType(SoVRMLExtrusion::getClassTypeId())) {
+    // Coin builds the whole swept surface before handing out a triangle: bound it first.
+    const auto& extrusion = static_cast<const SoVRMLExtrusion&>(shape);
+    const std::int64_t quads = static_cast<std::int64_t>(extrusion.spine.getNum()) *
+                               static_cast<std::int64_t>(extrusion.crossSection.getNum());
+    if (quads > kMaxExtrusionQuads) {
+      return reject(shape, fmt::format("the extrusion sweeps {} cross-section points along {} "
+                                       "spine points, more than {} quadrilaterals",
+                                       extrusion.crossSection.getNum(), extrusion.spine.getNum(),
+                                       kMaxExtrusionQuads));
+    }
+  }
   if (isParametric(shape)) return {};
   if (shape.isOfType(SoVertexShape::getClassTypeId())) {
     return checkInventorVertexShape(action, static_cast<SoVertexShape&>(shape));
