@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "graspkit: internal error: " << e.what() << "\n";
     return 2;
+  } catch (...) {
+    std::cerr << "graspkit: internal error: an exception that is not a std::exception (from a "
+                 "plugin's code?)\n";
+    return 2;
   }
   return 0;
 }

@@ -134,10 +134,18 @@ void pushJson(lua_State* L, const json& value, int depth) {
   }
 }
 
+constexpr int kMaxIndent = 16;
+
 // graspkit.json_encode(value [, {indent = n}]) -> text
 int encode(lua_State* L) {
   const OptionsTable options(L, 2, {"indent"});
   const int indent = options.integer("indent", -1);
+  // Each nesting level repeats the indent: a large one multiplies the text beyond any memory.
+  if (indent < -1 || indent > kMaxIndent) {
+    throw ArgumentError(
+        L, 2,
+        fmt::format("option 'indent' must be -1 (one line) .. {}, got {}", kMaxIndent, indent));
+  }
   const std::string text = toJson(L, 1, 0, "value").dump(indent);
   lua_pushlstring(L, text.data(), text.size());
   return 1;

@@ -35,6 +35,9 @@ int guarded(lua_State* L) {
     return F(L);
   } catch (const std::exception& e) {
     lua_pushstring(L, e.what());
+  } catch (...) {
+    // A plugin's own exception type: caught here, or it would cross Lua's C frames.
+    lua_pushliteral(L, "an exception that is not a std::exception (from a plugin's code?)");
   }
   return raiseError(L);  // every C++ local of F is gone by now
 }

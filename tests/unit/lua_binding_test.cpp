@@ -265,6 +265,10 @@ TEST_F(LuaBinding, JsonRoundTrips) {
               "result = t.a[1] == 1 and t.a[2] == 2.5 and t.a[3] == 'x' and t.b == true"));
   EXPECT_NE(error("graspkit.json_encode({x = 0/0})").find("JSON cannot hold"), std::string::npos);
   EXPECT_NE(error("graspkit.json_decode('{')").find("json_decode"), std::string::npos);
+  // An indent repeats per level: a huge one is refused before any text is built.
+  EXPECT_NE(error("graspkit.json_encode({{{1}}}, {indent = 2147483647})").find("'indent'"),
+            std::string::npos);
+  EXPECT_TRUE(boolean("result = graspkit.json_encode({1}, {indent = 2}) == '[\\n  1\\n]'"));
 }
 
 TEST_F(LuaBinding, PluginsListTheRobotPluginsAndTheSandboxGuardsLoading) {

@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 const fs::path kCorpus = GRASPKIT_PLUGIN_CORPUS_DIR;
 const fs::path kGood = kCorpus / "good";
 const fs::path kBroken = kCorpus / "broken";
+const fs::path kThrowing = kCorpus / "throwing";
 
 // The error message of loading `file` into a fresh registry whose path holds only the good plugin.
 std::string loadError(const std::string& file) {
@@ -64,6 +65,35 @@ TEST(PluginLoader, LoadsThePluginProvidingARequestedTypeOnDemand) {
   EXPECT_EQ(fs::canonical(from->file), fs::canonical(kGood / "good.so"));
   // The same plugin brought its quality measure along.
   EXPECT_EQ(registry.makeQualityMeasure("corpus_constant")->evaluate(GraspWrenchSpace{}), 42.0);
+}
+
+// Whatever a plugin's factory or robot type throws, a std::exception or not, reaches the host as
+// a graspkit::Error naming the plugin: never std::terminate, never an anonymous "internal error".
+TEST(PluginLoader, ThrowingFactoriesBecomeErrorsNamingThePlugin) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kThrowing});
+  const auto errorOf = [](auto&& make) -> std::string {
+    try {
+      make();
+    } catch (const Error& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "no error";
+    return "";
+  };
+  const std::string standard = errorOf([&] { registry.makeQualityMeasure("corpus_throws_std"); });
+  EXPECT_NE(standard.find("corpus_throwing 0.1"), std::string::npos) << standard;
+  EXPECT_NE(standard.find("calibration table missing"), std::string::npos) << standard;
+  const std::string other = errorOf([&] { registry.makeQualityMeasure("corpus_throws_int"); });
+  EXPECT_NE(other.find("corpus_throwing 0.1"), std::string::npos) << other;
+  EXPECT_NE(other.find("not a std::exception"), std::string::npos) << other;
+  LoadOptions options;
+  options.registry = &registry;
+  const fs::path robot = gripperOfType("CorpusConfigureThrows");
+  const std::string configure = errorOf([&] { loadRobotFile(robot, options); });
+  EXPECT_NE(configure.find(robot.string()), std::string::npos) << configure;
+  EXPECT_NE(configure.find("CorpusConfigureThrows"), std::string::npos) << configure;
+  EXPECT_NE(configure.find("not a std::exception"), std::string::npos) << configure;
 }
 
 TEST(PluginLoader, TheRobotTypeConfiguresTheModel) {

@@ -386,6 +386,11 @@ TEST_F(RaySceneSphere, NonFiniteRaysAreErrors) {
   EXPECT_THROW(scene.intersect({Vector3::Zero(), Vector3::UnitX(), kNaN, 1.0}), Error);
   EXPECT_THROW(scene.intersect({Vector3::Zero(), Vector3::UnitX(), -1.0, 1.0}), Error);
   EXPECT_THROW(scene.intersect({Vector3::Zero(), Vector3::UnitX(), 0.0, kNaN}), Error);
+  // Finite in double, infinite in Embree's float: refused, never passed on (Embree aborts).
+  EXPECT_THROW(scene.intersect({Vector3(1e300, 0, 0), -Vector3::UnitX()}), Error);
+  EXPECT_THROW(scene.intersect({Vector3::Zero(), Vector3::UnitX(), 1e300, kInf}), Error);
+  // A segment end past float range is no end: the sphere is still hit.
+  EXPECT_TRUE(scene.intersect({centre + Vector3(0, 0, 300), -Vector3::UnitZ(), 0.0, 1e300}));
 
   // A batch checks every ray before tracing any, and leaves the hits alone when one is bad.
   std::vector<Ray> rays(40, Ray{centre + Vector3(0, 0, 300), -Vector3::UnitZ()});

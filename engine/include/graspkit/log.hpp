@@ -17,4 +17,8 @@ WarningHandler setWarningHandler(WarningHandler handler);
 
 void warn(const SourceLocation& where, const std::string& message);
 
+// A trace line for `graspkit -v` (spdlog's debug level), such as the plugin about to run: when
+// native code crashes the process, the last trace line says whose code it was.
+void trace(const std::string& message);
+
 }  // namespace graspkit

@@ -229,6 +229,15 @@ class RobotReader {
       } catch (const Error& e) {
         // The type's message, located at <robot> (its own location names this file already).
         throw Error(xml::at(file_, root), e.message());
+      } catch (const std::exception& e) {
+        throw Error(xml::at(file_, root),
+                    fmt::format("robot type '{}' failed to configure the robot: {}", robot->type,
+                                e.what()));
+      } catch (...) {
+        throw Error(xml::at(file_, root),
+                    fmt::format("robot type '{}' failed to configure the robot: it threw "
+                                "something that is not a std::exception",
+                                robot->type));
       }
     }
     return robot;

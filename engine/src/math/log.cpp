@@ -35,4 +35,8 @@ void warn(const SourceLocation& where, const std::string& message) {
   }
 }
 
+void trace(const std::string& message) {
+  spdlog::debug("{}", message);
+}
+
 }  // namespace graspkit

@@ -147,6 +147,7 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
 
   // Never dlclose: a plugin's code may have run (static constructors, its register function),
   // and unloading it could leave dangling pointers behind in the process.
+  trace(fmt::format("loading plugin {} (its static constructors run now)", file.string()));
   void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) return fail("cannot load: " + dlErrorText());
   dlerror();
@@ -179,6 +180,7 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
                               other.file.string()));
 
   StagingRegistrar staging;
+  trace(fmt::format("calling the register function of plugin '{}' ({})", info.name, file.string()));
   try {
     descriptor->register_factories(staging);
   } catch (const std::exception& e) {

@@ -101,6 +101,27 @@ std::optional<Provenance> Registry::provenance(FactoryKind kind, const std::stri
   return it->second.from;
 }
 
+namespace {
+
+// Calls a factory, which may be a plugin's code: whatever it throws becomes a graspkit::Error
+// naming what was made and the plugin it came from, so no exception of a plugin's own type
+// reaches the host (where nothing would catch it) and every failure says whose it is.
+template <class Factory>
+auto callFactory(std::string_view what, const Provenance& from, Factory&& factory) {
+  const auto fail = [&](std::string_view reason) {
+    return Error(fmt::format("{} ({}): {}", what, from.describe(), reason));
+  };
+  try {
+    return factory();
+  } catch (const std::exception& e) {  // graspkit::Error too, its location included
+    throw fail(e.what());
+  } catch (...) {
+    throw fail("it threw something that is not a std::exception");
+  }
+}
+
+}  // namespace
+
 std::optional<Registry::Entry> Registry::find(FactoryKind kind, const std::string& name) {
   std::lock_guard lock(mutex_);
   auto it = entries_.find(Key{kind, name});
@@ -125,7 +146,8 @@ std::shared_ptr<const RobotType> Registry::robotType(const std::string& name) {
   if (!find(FactoryKind::RobotType, name)) throwUnknown(FactoryKind::RobotType, name);
   Entry& entry = entries_.at(Key{FactoryKind::RobotType, name});
   if (!entry.robotTypeInstance) {
-    entry.robotTypeInstance = entry.robotType();
+    entry.robotTypeInstance =
+        callFactory(fmt::format("robot type '{}'", name), entry.from, entry.robotType);
     if (!entry.robotTypeInstance)
       throw Error(fmt::format("the factory of robot type '{}' ({}) made nothing", name,
                               entry.from.describe()));
@@ -136,7 +158,8 @@ std::shared_ptr<const RobotType> Registry::robotType(const std::string& name) {
 std::unique_ptr<QualityMeasure> Registry::makeQualityMeasure(const std::string& name) {
   std::optional<Entry> entry = find(FactoryKind::QualityMeasure, name);
   if (!entry) throwUnknown(FactoryKind::QualityMeasure, name);
-  std::unique_ptr<QualityMeasure> measure = entry->qualityMeasure();
+  std::unique_ptr<QualityMeasure> measure =
+      callFactory(fmt::format("quality measure '{}'", name), entry->from, entry->qualityMeasure);
   if (!measure)
     throw Error(fmt::format("the factory of quality measure '{}' ({}) made nothing", name,
                             entry->from.describe()));
@@ -147,7 +170,8 @@ std::unique_ptr<SearchEnergy> Registry::makeSearchEnergy(const std::string& name
   const std::string canonical = canonicalEnergyName(name);
   std::optional<Entry> entry = find(FactoryKind::SearchEnergy, canonical);
   if (!entry) throwUnknown(FactoryKind::SearchEnergy, name);
-  std::unique_ptr<SearchEnergy> energy = entry->searchEnergy();
+  std::unique_ptr<SearchEnergy> energy =
+      callFactory(fmt::format("search energy '{}'", canonical), entry->from, entry->searchEnergy);
   if (!energy)
     throw Error(fmt::format("the factory of search energy '{}' ({}) made nothing", canonical,
                             entry->from.describe()));
@@ -158,7 +182,8 @@ std::unique_ptr<Planner> Registry::makePlanner(const std::string& name,
                                                const PlanningRequest& request) {
   std::optional<Entry> entry = find(FactoryKind::Planner, name);
   if (!entry) throwUnknown(FactoryKind::Planner, name);
-  std::unique_ptr<Planner> planner = entry->planner(request);
+  std::unique_ptr<Planner> planner = callFactory(fmt::format("planner '{}'", name), entry->from,
+                                                 [&] { return entry->planner(request); });
   if (!planner)
     throw Error(
         fmt::format("the factory of planner '{}' ({}) made nothing", name, entry->from.describe()));

@@ -30,7 +30,7 @@ EmbreeMesh::EmbreeMesh(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::mo
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     bounds_.extend(vertices[i]);
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(vertices[i][k]);
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = toEmbreeFloat(vertices[i][k]);
   }
   const auto& triangles = mesh_->triangles;
   auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
@@ -68,11 +68,11 @@ void EmbreeMesh::forEachNear(const Vector3& center, double radius, Callback call
   if (mesh_->triangles.empty()) return;
   const double pad = floatPad(center);
   RTCPointQuery query;
-  query.x = static_cast<float>(center.x());
-  query.y = static_cast<float>(center.y());
-  query.z = static_cast<float>(center.z());
+  query.x = toEmbreeFloat(center.x());
+  query.y = toEmbreeFloat(center.y());
+  query.z = toEmbreeFloat(center.z());
   query.time = 0.0f;
-  query.radius = static_cast<float>(radius + pad);
+  query.radius = toEmbreeFloat(radius + pad);
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   NearQuery near{user, callback};
@@ -98,7 +98,7 @@ bool visitNearest(RTCPointQueryFunctionArguments* args) {
   if (!(d < search->best)) return false;
   search->best = d;
   search->found = EmbreeMesh::Nearest{args->primID, p, d};
-  args->query->radius = static_cast<float>(d + search->pad);
+  args->query->radius = toEmbreeFloat(d + search->pad);
   return true;
 }
 
@@ -111,12 +111,12 @@ std::optional<EmbreeMesh::Nearest> EmbreeMesh::nearest(const Vector3& center,
                        std::nextafter(maxDistance, std::numeric_limits<double>::infinity()),
                        std::nullopt};
   RTCPointQuery query;
-  query.x = static_cast<float>(center.x());
-  query.y = static_cast<float>(center.y());
-  query.z = static_cast<float>(center.z());
+  query.x = toEmbreeFloat(center.x());
+  query.y = toEmbreeFloat(center.y());
+  query.z = toEmbreeFloat(center.z());
   query.time = 0.0f;
   // Infinite radii are fine: Embree shrinks nothing until the callback does.
-  query.radius = static_cast<float>(maxDistance + search.pad);
+  query.radius = toEmbreeFloat(maxDistance + search.pad);
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(scene_, &query, &context, &visitNearest, &search);

@@ -5,12 +5,22 @@
 
 #include <embree3/rtcore.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 
 #include "graspkit/mesh.hpp"
 
 namespace graspkit::raycast {
+
+// Embree works in float. A double past float range becomes an infinity of its sign here (a plain
+// cast would be undefined behaviour), which Embree treats as no bound or an invalid primitive.
+inline float toEmbreeFloat(double value) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (value > kMax) return std::numeric_limits<float>::infinity();
+  if (value < -kMax) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(value);
+}
 
 // The process-wide Embree device.
 RTCDevice device();

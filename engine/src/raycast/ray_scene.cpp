@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "graspkit/error.hpp"
@@ -12,6 +13,7 @@
 namespace graspkit {
 
 using raycast::EmbreeMesh;
+using raycast::toEmbreeFloat;
 
 namespace {
 
@@ -29,7 +31,7 @@ struct Instance {
 void setInstancePose(RTCGeometry geometry, const Transform& pose) {
   float m[12];
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) m[3 * c + r] = static_cast<float>(pose.matrix()(r, c));
+    for (int r = 0; r < 3; ++r) m[3 * c + r] = toEmbreeFloat(pose.matrix()(r, c));
   rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m);
   rtcCommitGeometry(geometry);
 }
@@ -37,6 +39,10 @@ void setInstancePose(RTCGeometry geometry, const Transform& pose) {
 bool finite(const Vector3& v) {
   return v.allFinite();
 }
+
+// Embree works in float: a coordinate past float range becomes infinite inside it and aborts the
+// process. Scenes are in mm; this bound is far beyond any of them and well inside float range.
+constexpr double kMaxRayCoordinate = 1e20;
 
 // A checked ray with its direction made unit.
 struct UnitRay {
@@ -51,10 +57,13 @@ UnitRay checkedRay(const Ray& ray, std::size_t index, bool batch) {
                 what);
   };
   if (!finite(ray.origin)) fail("origin is not finite");
+  if (ray.origin.cwiseAbs().maxCoeff() > kMaxRayCoordinate)
+    fail("origin is more than 1e20 mm from the world origin");
   if (!finite(ray.direction)) fail("direction is not finite");
   const double length = ray.direction.norm();
   if (!(length > 0) || !std::isfinite(length)) fail("direction has no usable length");
   if (!std::isfinite(ray.tmin) || ray.tmin < 0) fail("tmin must be finite and >= 0");
+  if (ray.tmin > kMaxRayCoordinate) fail("tmin is more than 1e20 mm");
   if (std::isnan(ray.tmax)) fail("tmax is NaN");
   return {ray.origin, ray.direction / length, ray.tmin, ray.tmax};
 }
@@ -62,14 +71,14 @@ UnitRay checkedRay(const Ray& ray, std::size_t index, bool batch) {
 // Embree's float segment; a tmax below tmin leaves an empty segment that hits nothing.
 template <class RayT>
 void fillRay(RayT& r, const UnitRay& ray) {
-  r.org_x = static_cast<float>(ray.origin.x());
-  r.org_y = static_cast<float>(ray.origin.y());
-  r.org_z = static_cast<float>(ray.origin.z());
-  r.dir_x = static_cast<float>(ray.direction.x());
-  r.dir_y = static_cast<float>(ray.direction.y());
-  r.dir_z = static_cast<float>(ray.direction.z());
-  r.tnear = static_cast<float>(ray.tmin);
-  r.tfar = static_cast<float>(ray.tmax);
+  r.org_x = toEmbreeFloat(ray.origin.x());
+  r.org_y = toEmbreeFloat(ray.origin.y());
+  r.org_z = toEmbreeFloat(ray.origin.z());
+  r.dir_x = toEmbreeFloat(ray.direction.x());
+  r.dir_y = toEmbreeFloat(ray.direction.y());
+  r.dir_z = toEmbreeFloat(ray.direction.z());
+  r.tnear = toEmbreeFloat(ray.tmin);
+  r.tfar = toEmbreeFloat(ray.tmax);  // past float range: no end
   r.time = 0.0f;
   r.mask = ~0u;
   r.id = 0;
@@ -294,12 +303,14 @@ bool visitWorld(RTCPointQueryFunctionArguments* args) {
   search->best = d;
   search->instance = id;
   search->found = EmbreeMesh::Nearest{args->primID, p, d};
-  args->query->radius = static_cast<float>(d + search->pad);
+  args->query->radius = toEmbreeFloat(d + search->pad);
   return true;
 }
 
 void checkQuery(const Vector3& point, double maxDistance) {
   if (!finite(point)) throw Error("RayScene::nearestSurfacePoint: point is not finite");
+  if (point.cwiseAbs().maxCoeff() > kMaxRayCoordinate)
+    throw Error("RayScene::nearestSurfacePoint: point is more than 1e20 mm from the world origin");
   if (std::isnan(maxDistance) || maxDistance < 0)
     throw Error("RayScene::nearestSurfacePoint: maxDistance must be >= 0");
 }
@@ -340,11 +351,11 @@ std::optional<SurfacePoint> RayScene::nearestSurfacePoint(const Vector3& point, 
   WorldSearch search{&s.instances, point, s.pad(point),
                      std::nextafter(maxDistance, std::numeric_limits<double>::infinity())};
   RTCPointQuery query;
-  query.x = static_cast<float>(point.x());
-  query.y = static_cast<float>(point.y());
-  query.z = static_cast<float>(point.z());
+  query.x = toEmbreeFloat(point.x());
+  query.y = toEmbreeFloat(point.y());
+  query.z = toEmbreeFloat(point.z());
   query.time = 0.0f;
-  query.radius = static_cast<float>(maxDistance + search.pad);
+  query.radius = toEmbreeFloat(maxDistance + search.pad);
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(s.scene, &query, &context, &visitWorld, &search);
