@@ -21,6 +21,11 @@ void addScriptFlags(CLI::App& command, ScriptFlags& flags) {
                    "No sandbox: full io and os libraries, C modules, any file");
   command.add_option("--timeout", flags.timeout, "Stop a script after this many seconds")
       ->check(CLI::PositiveNumber);
+  command
+      .add_option("--memory", flags.memoryMiB,
+                  "Most memory the script's Lua heap may hold, MiB (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 22));
   addLoadFlags(command, flags.roots, flags.genericRobots);
 }
 
@@ -30,6 +35,7 @@ lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet) {
   options.sandbox.allowRead = flags.allowRead;
   options.sandbox.allowWrite = flags.allowWrite;
   options.timeoutSeconds = flags.timeout;
+  options.memoryLimitBytes = static_cast<std::size_t>(flags.memoryMiB) << 20;
   options.exitProcessWhenStuck = true;  // --timeout is a promise to the user: keep it
   options.load.roots = flags.roots;
   options.load.genericRobotFallback = flags.genericRobots;

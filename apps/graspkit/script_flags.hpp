@@ -16,6 +16,8 @@ struct ScriptFlags {
   std::vector<std::filesystem::path> allowWrite;
   bool unsafe = false;
   std::optional<double> timeout;  // seconds
+  // MiB of Lua heap (0: no limit); the default is ScriptOptions' 1 GiB.
+  std::size_t memoryMiB = lua::ScriptOptions::kDefaultMemoryLimitBytes >> 20;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
 };

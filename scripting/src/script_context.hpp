@@ -10,6 +10,7 @@
 
 #include "graspkit/io/model_cache.hpp"
 #include "graspkit/lua/script_host.hpp"
+#include "memory_limit.hpp"
 
 namespace graspkit::lua {
 
@@ -23,6 +24,7 @@ struct ScriptContext {
   std::optional<std::chrono::steady_clock::time_point> deadline;
   bool timeLimitReached = false;  // set by the time-limit hook, even if the script caught its error
   std::optional<int> exitStatus;  // set by os.exit
+  LuaMemory memory;               // the Lua heap and its limit
 
   // A file the script names for reading: absolute as given; relative, the first that exists of
   // the current folder, the script's folder and each model root (the current folder when none

@@ -27,7 +27,10 @@ int exitScript(lua_State* L) {
   if (lua_isboolean(L, 1)) {
     status = lua_toboolean(L, 1) ? 0 : 1;
   } else if (!lua_isnoneornil(L, 1)) {
-    status = static_cast<int>(luaL_checkinteger(L, 1));
+    const lua_Integer n = luaL_checkinteger(L, 1);
+    // A process exit status is one byte: 256 would exit 0, a failure reported as success.
+    luaL_argcheck(L, n >= 0 && n <= 255, 1, "exit status must be 0..255");
+    status = static_cast<int>(n);
   }
   scriptContext(L).exitStatus = status;
   lua_pushlightuserdata(L, &exit_sentinel);
@@ -129,7 +132,8 @@ ScriptHost::ScriptHost(const fs::path& script, ScriptOptions options)
   context_->modelRoots = modelRoots(context_->options.load);
   context_->paths = makePolicy(*context_);
 
-  L_ = luaL_newstate();
+  context_->memory.limit = context_->options.memoryLimitBytes.value_or(0);
+  L_ = lua_newstate(limitedAllocate, &context_->memory);
   if (L_ == nullptr) throw Error("cannot create a Lua state (out of memory)");
   *static_cast<ScriptContext**>(lua_getextraspace(L_)) = context_.get();
   luaL_openlibs(L_);
@@ -184,6 +188,7 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   }
   context_->timeLimitReached = false;
   context_->exitStatus.reset();
+  context_->memory.refused = false;
   // Whatever the engine reads for the script (the geometry a model file names, a planner's
   // state file) is subject to the script's read policy, not only the file the script named.
   std::optional<ScopedReadGuard> readGuard;
@@ -221,6 +226,11 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   const char* message = lua_tostring(L_, -1);
   outcome.message = message != nullptr ? message : "(error object is not a string)";
   lua_pop(L_, 1);
+  if (status == LUA_ERRMEM && context_->memory.refused) {
+    outcome.message += fmt::format(
+        " (the script's memory limit is {} MiB; --memory raises it, 0 lifts it)",
+        context_->memory.limit >> 20);
+  }
   if (timed_out && outcome.message.find("--timeout") == std::string::npos) {
     // The script caught the limit's error, or the limit struck inside a library call.
     outcome.message = timeLimitMessage(*context_->options.timeoutSeconds) + "\n" + outcome.message;

@@ -70,14 +70,20 @@ const BadInput kCorpus[] = {
      "full_transform_three_numbers.xml", 6, "fullTransform", "expected '(w x y z)[x y z]'"},
     {"EigengraspWrongDimensions", "robots/eigengrasp_wrong_dims.xml", "eigen_wrong_dims.xml", 2,
      "EigenGrasps", "dimensions is 3, the robot has 2"},
+    {"EigengraspDofIndexOverflow", "robots/eigengrasp_index_overflow.xml",
+     "eigen_index_overflow.xml", 6, "DimVals", "'d4294967296' does not name one of the 2 DOFs"},
     {"ConnectionToMissingChain", "worlds/bad_connection_chain.xml", "bad_connection_chain.xml", 9,
      "connection", "has 1 chains, connection names chain 3"},
 };
 
 // Files in the corpus that are not bad inputs themselves: valid parts the bad files use.
-const std::set<std::string> kSupportFiles = {"robots/good_hand.xml", "robots/iv/cube.xml",
-                                             "robots/iv/cube.off",   "robots/eigen_wrong_dims.xml",
-                                             "bodies/good_cube.xml", "bodies/cube.off"};
+const std::set<std::string> kSupportFiles = {"robots/good_hand.xml",
+                                             "robots/iv/cube.xml",
+                                             "robots/iv/cube.off",
+                                             "robots/eigen_wrong_dims.xml",
+                                             "robots/eigen_index_overflow.xml",
+                                             "bodies/good_cube.xml",
+                                             "bodies/cube.off"};
 
 class BadInputTest : public ::testing::TestWithParam<BadInput> {};
 

@@ -482,6 +482,27 @@ TEST_F(LuaSandbox, MetatablesAreLocked) {
   )"));
 }
 
+// --- Resource limits ----------------------------------------------------------------------------
+
+// A script that grows without end meets the memory limit (Lua's own out-of-memory error), and the
+// message says which limit and how to raise it. The same script under the limit runs.
+TEST_F(LuaSandbox, MemoryLimitStopsARunawayScript) {
+  ScriptOptions options = sandboxed();
+  options.memoryLimitBytes = std::size_t{32} << 20;
+  const std::string grow = "local t = {} for i = 1, 1e9 do t[i] = string.rep('x', 1000) .. i end";
+  expectRefused(run(grow, options), {"not enough memory", "memory limit is 32 MiB"});
+  expectOk(run("local t = {} for i = 1, 1000 do t[i] = string.rep('x', 1000) .. i end", options));
+  EXPECT_EQ(ScriptOptions{}.memoryLimitBytes, ScriptOptions::kDefaultMemoryLimitBytes);
+}
+
+// An exit status is one byte: os.exit(256) would exit 0, a failure read as success.
+TEST_F(LuaSandbox, ExitStatusOutsideAByteIsRefused) {
+  expectRefused(run("os.exit(256)"), {"exit status must be 0..255"});
+  expectRefused(run("os.exit(-1)"), {"exit status must be 0..255"});
+  const ScriptOutcome three = run("os.exit(3)");
+  EXPECT_EQ(three.exitStatus, 3);
+}
+
 // --- The time limit ----------------------------------------------------------------------------
 
 class LuaTimeLimit : public LuaSandbox {

@@ -4,6 +4,7 @@
 // copies poses and DOF values; a planner runs one clone per thread.
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -81,6 +82,9 @@ class World {
   void updateChildren(int parent);
 
   std::vector<Body> bodies_;
+  // Per base name, the next numbered suffix to try: N copies of one file get their names in
+  // O(N) each rather than O(N^2).
+  std::map<std::string, int> next_suffix_;
   std::vector<WorldRobot> robots_;
   std::vector<Connection> connections_;
   std::optional<Camera> camera_;

@@ -1,3 +1,5 @@
+#include <charconv>
+
 #include <fmt/format.h>
 
 #include "graspkit/io/robot_file.hpp"
@@ -16,10 +18,12 @@ Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dof
   Eigen::VectorXd values = Eigen::VectorXd::Zero(dofs);
   for (auto* attr = dims->FirstAttribute(); attr; attr = attr->Next()) {
     const std::string_view name = attr->Name();
+    // from_chars, not digit arithmetic: d4294967296 must not wrap round to d0.
     int index = -1;
     if (name.size() > 1 && name[0] == 'd') {
-      index = 0;
-      for (char c : name.substr(1)) index = std::isdigit(c) ? index * 10 + (c - '0') : -1 - dofs;
+      const std::string_view digits = name.substr(1);
+      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+      if (ec != std::errc() || end != digits.data() + digits.size()) index = -1;
     }
     if (index < 0 || index >= dofs) {
       throw Error(xml::at(file, *dims),

@@ -37,8 +37,13 @@ std::optional<int> World::findRobot(const std::string& name) const {
 int World::addBody(Body body) {
   if (body.name.empty() && body.model) body.name = body.model->name;
   // GraspIt! names bodies after their files; two copies of one file get a numbered suffix.
-  const std::string base = body.name;
-  for (int n = 2; findBody(body.name); ++n) body.name = fmt::format("{}_{}", base, n);
+  if (findBody(body.name)) {
+    const std::string base = body.name;
+    int& n = next_suffix_.try_emplace(base, 2).first->second;
+    do {
+      body.name = fmt::format("{}_{}", base, n++);
+    } while (findBody(body.name));
+  }
   bodies_.push_back(std::move(body));
   return static_cast<int>(bodies_.size()) - 1;
 }

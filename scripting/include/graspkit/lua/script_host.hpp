@@ -26,6 +26,11 @@ struct ScriptOptions {
   // second past the deadline. The command-line program sets it; a host embedding graspkit
   // decides for itself.
   bool exitProcessWhenStuck = false;
+  // The most memory the script's Lua heap may hold (tables, strings, closures; engine objects
+  // such as worlds live outside it). Past it an allocation fails with Lua's "not enough memory"
+  // error. Empty or 0: no limit.
+  static constexpr std::size_t kDefaultMemoryLimitBytes = std::size_t{1} << 30;  // 1 GiB
+  std::optional<std::size_t> memoryLimitBytes = kDefaultMemoryLimitBytes;
   // Model roots (--root) and the generic robot fallback. The roots are readable in the sandbox
   // and searched for relative model paths.
   LoadOptions load;
