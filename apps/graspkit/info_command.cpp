@@ -167,6 +167,8 @@ int runInfo(const InfoOptions& options, std::ostream& out) {
   World world = loadAnyFile(
       options.file,
       LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  // --robot is checked even without --dofs: a wrong index must not pass unnoticed.
+  if (world.robotCount() > 0 || options.robot != 0) world.robot(options.robot);
   if (!options.dofs.empty())
     world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
   json j = worldJson(world);

@@ -1,6 +1,9 @@
 // graspkit: the command-line program. Each subcommand lives in its own file (*_command.cpp)
 // and registers itself here.
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -43,13 +46,15 @@ int main(int argc, char** argv) {
                     : verbose ? spdlog::level::debug
                               : spdlog::level::warn);
   spdlog::set_pattern("graspkit: %l: %v");
+  int status = 0;
   try {
-    if (app.got_subcommand("info")) return graspkit::cli::runInfo(info, std::cout);
-    if (app.got_subcommand("grasp")) return graspkit::cli::runGrasp(grasp, std::cout);
-    if (app.got_subcommand("plugins")) return graspkit::cli::runPlugins(plugins, std::cout);
-    if (app.got_subcommand("run")) return graspkit::cli::runRun(run, quiet);
-    if (app.got_subcommand("test")) return graspkit::cli::runTest(test, quiet, verbose, std::cout);
-    if (app.got_subcommand("plan")) return graspkit::cli::runPlan(plan, quiet, std::cout);
+    if (app.got_subcommand("info")) status = graspkit::cli::runInfo(info, std::cout);
+    if (app.got_subcommand("grasp")) status = graspkit::cli::runGrasp(grasp, std::cout);
+    if (app.got_subcommand("plugins")) status = graspkit::cli::runPlugins(plugins, std::cout);
+    if (app.got_subcommand("run")) status = graspkit::cli::runRun(run, quiet);
+    if (app.got_subcommand("test"))
+      status = graspkit::cli::runTest(test, quiet, verbose, std::cout);
+    if (app.got_subcommand("plan")) status = graspkit::cli::runPlan(plan, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -61,5 +66,11 @@ int main(int argc, char** argv) {
                  "plugin's code?)\n";
     return 2;
   }
-  return 0;
+  // Output that never reached its reader (a full disk, a closed pipe) is a failure, not a 0.
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "graspkit: error: cannot write standard output: " << std::strerror(errno) << "\n";
+    return 1;
+  }
+  return status;
 }

@@ -72,6 +72,8 @@ const BadInput kCorpus[] = {
      "EigenGrasps", "dimensions is 3, the robot has 2"},
     {"EigengraspDofIndexOverflow", "robots/eigengrasp_index_overflow.xml",
      "eigen_index_overflow.xml", 6, "DimVals", "'d4294967296' does not name one of the 2 DOFs"},
+    {"SecondRootElement", "worlds/two_roots.xml", "two_roots.xml", 5, "world",
+     "content after the root element <world>"},
     {"ConnectionToMissingChain", "worlds/bad_connection_chain.xml", "bad_connection_chain.xml", 9,
      "connection", "has 1 chains, connection names chain 3"},
 };

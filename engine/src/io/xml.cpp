@@ -28,6 +28,12 @@ Document::Document(const std::filesystem::path& file) : file_(file) {
   }
   root_ = doc_.RootElement();
   if (!root_) throw Error(SourceLocation{file.string()}, "the file has no root element");
+  // A second element after the root is content a reader would silently drop.
+  if (const tinyxml2::XMLElement* extra = root_->NextSiblingElement()) {
+    throw Error(
+        at(file, *extra),
+        fmt::format("content after the root element <{}>, which ends the document", root_->Name()));
+  }
 }
 
 SourceLocation at(const std::filesystem::path& file, const tinyxml2::XMLElement& element) {

@@ -1,0 +1,100 @@
+// libFuzzer target for one of graspkit's file readers, chosen at compile time by
+// GRASPKIT_FUZZ_READER (see CMakeLists.txt). Any bytes must give a result that keeps the
+// reader's promises (mesh indices in range, finite vertices) or a graspkit::Error. A crash, a
+// sanitizer report, a hang, or any other exception is a bug.
+//
+// The readers take files, so each input is written to one scratch file first; the file's name
+// carries the extension the reader dispatches on.
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "graspkit/error.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/log.hpp"
+#include "graspkit/mesh_loader.hpp"
+#include "graspkit/world.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scratch folder of this process, removed at exit.
+const fs::path& scratchFolder() {
+  static const fs::path folder = [] {
+    std::string pattern = (fs::temp_directory_path() / "graspkit_fuzz_XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) std::abort();
+    std::atexit([] {
+      std::error_code ec;
+      fs::remove_all(scratchFolder(), ec);
+    });
+    return fs::path(pattern);
+  }();
+  return folder;
+}
+
+void checkMesh(const graspkit::TriangleMesh& mesh) {
+  for (const auto& triangle : mesh.triangles)
+    for (const std::uint32_t index : triangle)
+      if (index >= mesh.vertices.size()) std::abort();
+  for (const auto& vertex : mesh.vertices)
+    if (!vertex.allFinite()) std::abort();
+}
+
+void checkWorld(const graspkit::World& world) {
+  for (const graspkit::Body& body : world.bodies())
+    if (body.model && body.model->mesh) checkMesh(*body.model->mesh);
+}
+
+void read(const fs::path& file) {
+  const std::string reader = GRASPKIT_FUZZ_READER;
+  if (reader == "body") {
+    const auto body = graspkit::loadBodyFile(file);
+    if (body->mesh) checkMesh(*body->mesh);
+  } else if (reader == "robot") {
+    graspkit::LoadOptions options;
+    options.useEnvironment = false;
+    options.genericRobotFallback = true;
+    graspkit::loadRobotFile(file, options);
+  } else if (reader == "world") {
+    graspkit::LoadOptions options;
+    options.useEnvironment = false;
+    options.genericRobotFallback = true;
+    checkWorld(graspkit::loadWorldFile(file, options));
+  } else if (reader == "eigengrasp") {
+    graspkit::loadEigengraspFile(file, 4);
+  } else if (reader == "virtual_contact") {
+    graspkit::loadVirtualContactFile(file);
+  } else {  // a mesh format: the extension chooses the reader
+    checkMesh(graspkit::loadMesh(file));
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
+  graspkit::setWarningHandler([](const graspkit::SourceLocation&, const std::string&) {});
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const fs::path file = scratchFolder() / ("input" GRASPKIT_FUZZ_EXTENSION);
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  try {
+    read(file);
+  } catch (const graspkit::Error&) {
+    // Refused with a located error: the expected outcome for most inputs.
+  }
+  return 0;
+}
