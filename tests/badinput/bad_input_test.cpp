@@ -74,6 +74,8 @@ const BadInput kCorpus[] = {
      "eigen_index_overflow.xml", 6, "DimVals", "'d4294967296' does not name one of the 2 DOFs"},
     {"SecondRootElement", "worlds/two_roots.xml", "two_roots.xml", 5, "world",
      "content after the root element <world>"},
+    {"ScaleOverflow", "bodies/scale_overflow.xml", "scale_overflow.xml", 5, "geometryScaling",
+     "beyond the 1e+09 mm a model coordinate may hold"},
     {"ConnectionToMissingChain", "worlds/bad_connection_chain.xml", "bad_connection_chain.xml", 9,
      "connection", "has 1 chains, connection names chain 3"},
 };

@@ -175,6 +175,34 @@ TEST(FullTransform, RandomTransformsParseBack) {
   }
 }
 
+// A quaternion is a direction: (1e200 1e200 0 0) and (1e-200 1e-200 0 0) both name the half
+// turn's half about x (90 degrees), though the first's norm overflows a double and the second's
+// underflows it. (0 0 0 0) names none and is refused at its element.
+TEST(FullTransform, QuaternionScaleDoesNotMatter) {
+  const fs::path root = test::scratchDir();
+  writeBody(root / "objects", "cube", "wood");
+  std::string world = "<?xml version=\"1.0\" ?>\n<world>\n";
+  for (const char* q : {"(1e200 1e200 0 0)[0 0 0]", "(1e-200 1e-200 0 0)[0 0 0]"})
+    world += std::string("  <obstacle><filename>objects/cube.xml</filename><transform>") +
+             "<fullTransform>" + q + "</fullTransform></transform></obstacle>\n";
+  world += "</world>\n";
+  writeText(root / "scaled.xml", world);
+  const World loaded = loadWorldFile(root / "scaled.xml", hermetic());
+  const Transform quarterTurn(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX()));
+  for (const Body& body : loaded.bodies()) EXPECT_LT(transformError(body.pose, quarterTurn), 1e-12);
+  writeText(root / "zero.xml",
+            "<?xml version=\"1.0\" ?>\n<world>\n  <obstacle><filename>objects/cube.xml</filename>"
+            "<transform><fullTransform>(0 0 0 0)[0 0 0]</fullTransform></transform></obstacle>\n"
+            "</world>\n");
+  try {
+    loadWorldFile(root / "zero.xml", hermetic());
+    ADD_FAILURE() << "a zero quaternion was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("zero.xml:3: <fullTransform>"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(DofValues, BreakawayRobotWritesFlagsPerJoint) {
   const fs::path root = test::scratchDir();
   Robot robot(loadRobotFile(writeGripper(root)));
@@ -316,7 +344,8 @@ TEST(WorldFile, SaveLoadSaveIsByteIdentical) {
   // GraspIt!'s layout: header, bodies, robots, connections, camera. Before <world>, a comment
   // records the engine and who provided each robot type (the test hand is a built-in Hand).
   EXPECT_EQ(second.rfind("<?xml version=\"1.0\" ?>\n<!-- saved by graspkit ", 0), 0u) << second;
-  EXPECT_NE(second.find("robot types: Hand (built in) -->\n<world>\n"), std::string::npos) << second;
+  EXPECT_NE(second.find("robot types: Hand (built in) -->\n<world>\n"), std::string::npos)
+      << second;
   const auto obstacle_at = second.find("<obstacle>");
   const auto graspable_at = second.find("<graspableBody>");
   const auto robot_at = second.find("<robot>");
@@ -347,9 +376,10 @@ TEST(WorldFile, SuccessfulSaveLeavesNoTemporary) {
   saveWorldFile(world, root / "world.xml");
   saveWorldFile(world, root / "world.xml");  // over an existing file too
   EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
-  EXPECT_EQ(readText(root / "world.xml"),
-            fmt::format("<?xml version=\"1.0\" ?>\n<!-- saved by graspkit {} -->\n<world>\n</world>\n",
-                        engineVersion()));
+  EXPECT_EQ(
+      readText(root / "world.xml"),
+      fmt::format("<?xml version=\"1.0\" ?>\n<!-- saved by graspkit {} -->\n<world>\n</world>\n",
+                  engineVersion()));
 }
 
 TEST(WorldFile, FailedWriteKeepsTheOldFile) {

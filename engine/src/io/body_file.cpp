@@ -13,6 +13,10 @@
 namespace graspkit {
 namespace {
 
+// Model coordinates, mm: a thousand kilometres is beyond any robot or object, and well inside the
+// float range of the ray and collision libraries.
+constexpr double kMaxModelCoordinate = 1e9;
+
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
@@ -87,6 +91,9 @@ void readMassProperties(const fs::path& file, const XMLElement& root, BodyModel&
   }
   if (const auto* element = xml::child(root, "cog")) {
     body.cog = xml::vector3(file, *element);
+    if (body.cog.cwiseAbs().maxCoeff() > kMaxModelCoordinate)
+      throw Error(xml::at(file, *element),
+                  fmt::format("a CoG beyond {:g} mm is not a body's", kMaxModelCoordinate));
     body.cogFromFile = true;
   }
   if (const auto* element = xml::child(root, "inertia_matrix")) {
@@ -144,6 +151,20 @@ void readGeometry(const fs::path& file, const XMLElement& root, BodyModel& body)
   Eigen::Affine3d placement = Eigen::Affine3d(body.geometryOffset.matrix());
   placement = placement * Eigen::Scaling(body.geometryScaling);
   transformMesh(mesh, placement);
+  // Each factor may be finite and their product not (a scale of 1e300): refuse what would turn
+  // into infinities, or into floats past range in the ray and collision queries, downstream.
+  for (const Vector3& v : mesh.vertices) {
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxModelCoordinate) {
+      const XMLElement* blame = xml::child(root, "geometryOffset");
+      for (const char* scaling :
+           {"geometryScaling", "geometryScalingX", "geometryScalingY", "geometryScalingZ"})
+        if (!blame) blame = xml::child(root, scaling);
+      throw Error(xml::at(file, blame ? *blame : *element),
+                  fmt::format("the scaled and offset geometry reaches ({}, {}, {}) mm, beyond "
+                              "the {:g} mm a model coordinate may hold",
+                              v.x(), v.y(), v.z(), kMaxModelCoordinate));
+    }
+  }
   body.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
 }
 

@@ -29,11 +29,8 @@ VirtualContact readContact(const fs::path& file, const XMLElement& element) {
   }
   contact.location = xml::vector3(file, xml::requiredChild(file, element, "location"));
   const auto q = xml::numbers(file, xml::requiredChild(file, element, "rotation"), 4);  // w x y z
-  contact.rotation = Quaternion(q[0], q[1], q[2], q[3]);
-  if (contact.rotation.norm() < 1e-9) {
-    throw Error(xml::at(file, *xml::child(element, "rotation")), "zero quaternion");
-  }
-  contact.rotation.normalize();
+  contact.rotation =
+      xml::unitQuaternion(file, *xml::child(element, "rotation"), q[0], q[1], q[2], q[3]);
   if (const auto* t = xml::child(element, "translation"))
     contact.translation = xml::vector3(file, *t);
   contact.normal = xml::vector3(file, xml::requiredChild(file, element, "normal"));

@@ -89,7 +89,8 @@ class WorldReader {
   void readRobot(const XMLElement& element, World& world) {
     const XMLElement& filename = xml::requiredChild(file_, element, "filename");
     const fs::path path = resolve(filename);
-    Robot robot(xml::locatedAt(file_, filename, [&] { return loadRobotFile(path, options_, cache_); }));
+    Robot robot(
+        xml::locatedAt(file_, filename, [&] { return loadRobotFile(path, options_, cache_); }));
     if (const auto* values = xml::child(element, "dofValues")) readDofValues(*values, robot);
     robot.setPose(pose(element));  // GraspIt! applies the transform after the DOF values
     world.addRobot(std::move(robot), xml::text(filename));
@@ -162,6 +163,8 @@ class WorldReader {
     camera.position = xml::vector3(file_, xml::requiredChild(file_, element, "position"));
     // Passed straight to Coin by GraspIt!, so x y z w, unlike every other quaternion.
     const auto q = xml::numbers(file_, xml::requiredChild(file_, element, "orientation"), 4);
+    // Kept as written (saving writes it back byte for byte), but it must name a rotation.
+    xml::unitQuaternion(file_, *xml::child(element, "orientation"), q[3], q[0], q[1], q[2]);
     camera.orientation = Quaternion(q[3], q[0], q[1], q[2]);
     camera.focalDistance = xml::optionalNumber(file_, element, "focalDistance", 0.0);
     world.setCamera(camera);
@@ -203,8 +206,8 @@ std::string provenanceComment(const World& world) {
   std::set<std::string> types;
   for (int r = 0; r < world.robotCount(); ++r) {
     const RobotModel& model = world.robot(r).model();
-    types.insert(model.type + " (" + (model.typeProvider.empty() ? "built in" : model.typeProvider) +
-                 ")");
+    types.insert(model.type + " (" +
+                 (model.typeProvider.empty() ? "built in" : model.typeProvider) + ")");
   }
   std::string text = fmt::format("<!-- saved by graspkit {}", engineVersion());
   if (!types.empty()) text += fmt::format("; robot types: {}", fmt::join(types, ", "));
