@@ -30,7 +30,8 @@ VirtualContact readContact(const fs::path& file, const XMLElement& element) {
   contact.location = xml::vector3(file, xml::requiredChild(file, element, "location"));
   const auto q = xml::numbers(file, xml::requiredChild(file, element, "rotation"), 4);  // w x y z
   contact.rotation =
-      xml::unitQuaternion(file, *xml::child(element, "rotation"), q[0], q[1], q[2], q[3]);
+      xml::checkedQuaternion(file, *xml::child(element, "rotation"), q[0], q[1], q[2], q[3])
+          .normalized();
   if (const auto* t = xml::child(element, "translation"))
     contact.translation = xml::vector3(file, *t);
   contact.normal = xml::vector3(file, xml::requiredChild(file, element, "normal"));

@@ -164,7 +164,7 @@ class WorldReader {
     // Passed straight to Coin by GraspIt!, so x y z w, unlike every other quaternion.
     const auto q = xml::numbers(file_, xml::requiredChild(file_, element, "orientation"), 4);
     // Kept as written (saving writes it back byte for byte), but it must name a rotation.
-    xml::unitQuaternion(file_, *xml::child(element, "orientation"), q[3], q[0], q[1], q[2]);
+    xml::checkedQuaternion(file_, *xml::child(element, "orientation"), q[3], q[0], q[1], q[2]);
     camera.orientation = Quaternion(q[3], q[0], q[1], q[2]);
     camera.focalDistance = xml::optionalNumber(file_, element, "focalDistance", 0.0);
     world.setCamera(camera);

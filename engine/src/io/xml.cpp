@@ -233,20 +233,21 @@ Transform parseFullTransform(const std::filesystem::path& file, const tinyxml2::
   const auto q = read(content.substr(open_q + 1, close_q - open_q - 1), 4);
   const auto t = read(content.substr(open_t + 1, close_t - open_t - 1), 3);
   return makeTransform(Vector3(t[0], t[1], t[2]),
-                       unitQuaternion(file, element, q[0], q[1], q[2], q[3]));
+                       checkedQuaternion(file, element, q[0], q[1], q[2], q[3]));
 }
 
-Quaternion unitQuaternion(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
-                          double w, double x, double y, double z) {
+Quaternion checkedQuaternion(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
+                             double w, double x, double y, double z) {
   // Scaled by the largest component first: (1e200 1e200 0 0) has a norm past double range and
   // (1e-200 0 0 0) one below it, yet both name a rotation.
   const double largest = std::max({std::abs(w), std::abs(x), std::abs(y), std::abs(z)});
   if (!(largest > 0.0) || !std::isfinite(largest)) {
     throw Error(at(file, element), "the quaternion has zero length: it names no rotation");
   }
-  Quaternion q(w / largest, x / largest, y / largest, z / largest);
-  q.normalize();
-  return q;
+  // In the ordinary range the quaternion stays as written, to the bit (makeTransform normalises
+  // it): saved worlds reload to the very same pose. Only the extremes are rescaled.
+  if (largest > 1e-100 && largest < 1e100) return Quaternion(w, x, y, z);
+  return Quaternion(w / largest, x / largest, y / largest, z / largest);
 }
 
 Transform transform(const std::filesystem::path& file, const tinyxml2::XMLElement& element) {

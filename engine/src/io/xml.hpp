@@ -35,9 +35,10 @@ class Document {
 // The location of `element` in `file`.
 SourceLocation at(const std::filesystem::path& file, const tinyxml2::XMLElement& element);
 
-// The unit quaternion (w x y z) scales to; throws naming `element` when it has no direction.
-Quaternion unitQuaternion(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
-                          double w, double x, double y, double z);
+// The quaternion (w x y z), rescaled when its norm would overflow or underflow (callers
+// normalise, as makeTransform does); throws naming `element` when it has no direction.
+Quaternion checkedQuaternion(const std::filesystem::path& file, const tinyxml2::XMLElement& element,
+                             double w, double x, double y, double z);
 
 // The first direct child named `name`, or null.
 const tinyxml2::XMLElement* child(const tinyxml2::XMLElement& parent, const char* name);
