@@ -587,6 +587,51 @@ TEST(AssimpLoader, AsciiPlyTetrahedron) {
   EXPECT_NEAR(computeMassProperties(tetra).volume, 1000.0 / 6.0, 1e-6);
 }
 
+// A header that promises more data than the file holds is refused before assimp reserves it:
+// a billion vertices of 12 bytes in a file of a hundred bytes.
+TEST(AssimpLoader, PlyHeaderPromisingMoreThanTheFileIsRefused) {
+  const fs::path path = writeFile(
+      test::scratchDir(), "promise.ply",
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
+      "property float y\nproperty float z\nend_header\n0123456789");
+  expectLocatedError(expectError([&] { loadMesh(path); }), path.string(), 7,
+                     "1000000000 instances needs at least 12 bytes each");
+  const fs::path typo = writeFile(test::scratchDir(), "typo.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\n"
+                                  "end_header\n0\n");
+  expectLocatedError(expectError([&] { loadMesh(typo); }), typo.string(), 4,
+                     "unknown property type 'flaot'");
+}
+
+// An OBJ's material library is never opened (the geometry is all that is kept): a FIFO there
+// would block the reader. A writer frees a blocked reader after 5 s, so a regression fails.
+TEST(AssimpLoader, ObjMaterialLibraryIsNeverOpened) {
+  const fs::path fifo = test::scratchDir() / "materials.fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path path = writeFile(test::scratchDir(), "with_mtl.obj",
+                                  "mtllib " + fifo.filename().string() +
+                                      "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                      "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  std::atomic<bool> loaded{false};
+  std::thread unblock([&] {
+    for (int i = 0; i < 50 && !loaded; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!loaded) {
+      const int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) close(fd);
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  TriangleMesh mesh;
+  EXPECT_NO_THROW(mesh = loadMesh(path));
+  loaded = true;
+  unblock.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(4));
+  EXPECT_EQ(mesh.triangleCount(), 4u);
+  fs::remove(fifo);
+}
+
 TEST(AssimpLoader, CorruptStlIsNamed) {
   const fs::path path = writeFile(test::scratchDir(), "broken.stl", "solid x\nfacet normal\n");
   const Error error = expectError([&] { loadMesh(path); });

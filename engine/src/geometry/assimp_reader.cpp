@@ -10,9 +10,11 @@
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 
 #include "geometry/mesh_readers.hpp"
+#include "geometry/ply_header.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/input_file.hpp"
 
@@ -70,6 +72,17 @@ void appendMesh(const aiMesh& source, const SourceLocation& where, TriangleMesh&
   }
 }
 
+// The file system assimp sees: none. The file itself is read into memory first, through the
+// engine's input gate; whatever else an importer asks for (an OBJ's material library, which
+// could name a FIFO or a file outside a sandbox) is simply not there.
+class NoFiles final : public Assimp::IOSystem {
+ public:
+  bool Exists(const char* /*file*/) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char* /*file*/, const char* /*mode*/) override { return nullptr; }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+};
+
 }  // namespace
 
 TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat format) {
@@ -77,7 +90,9 @@ TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat format
   // Read from memory: the geometry is all we keep, so an OBJ's material library is not needed.
   const std::string bytes = readInputFile(path);
   if (bytes.empty()) throw Error(where, "the file is empty");
+  if (format == MeshFormat::Ply) checkPlyHeader(bytes, where);
   Assimp::Importer importer;
+  importer.SetIOHandler(new NoFiles);  // the importer owns it
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, kRemovedComponents);
   const aiScene* scene =
       importer.ReadFileFromMemory(bytes.data(), bytes.size(), kPostProcess, formatHint(format));
