@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "graspkit/autograsp.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/output_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/registry.hpp"
@@ -154,26 +155,6 @@ void checkOut(const std::filesystem::path& out) {
   fs::remove(probe);
 }
 
-// Writes `text` to `file` through a temporary file and a rename: never half a file.
-void writeAtomically(const std::filesystem::path& file, const std::string& text) {
-  const std::filesystem::path temporary = file.string() + fmt::format(".tmp{}", ::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::filesystem::remove(temporary);
-      throw Error(fmt::format("--out: writing {} failed", file.string()));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, file, ec);
-  if (ec) {
-    std::filesystem::remove(temporary);
-    throw Error(fmt::format("--out: cannot write {}: {}", file.string(), ec.message()));
-  }
-}
-
 // One world per grasp (graspWorld: the hand closed as the plan measured it, breakaway state
 // included), then the JSON. On any failure the files already written are removed.
 void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& grasps, json& result,
@@ -188,7 +169,7 @@ void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& gr
       files.push_back(file.string());
     }
     result["world_files"] = files;
-    writeAtomically(out, result.dump(2) + "\n");
+    writeFileAtomically(out, result.dump(2) + "\n");
   } catch (...) {
     for (const auto& file : written) std::filesystem::remove(file);
     throw;

@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -400,6 +402,38 @@ TEST(WorldFile, FailedWriteKeepsTheOldFile) {
   EXPECT_THROW(saveWorldFile(world, root / "world.xml"), Error);
   EXPECT_EQ(readText(root / "world.xml"), old_text);
   EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
+}
+
+// The failure says why, in the operating system's words.
+TEST(WorldFile, FailedWriteSaysWhy) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const fs::path root = test::scratchDir();
+  fs::create_symlink("/dev/full", root / ("world.xml.tmp" + std::to_string(::getpid())));
+  try {
+    saveWorldFile(World{}, root / "world.xml");
+    ADD_FAILURE() << "a write to a full disk succeeded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(std::strerror(ENOSPC)), std::string::npos) << e.what();
+  }
+}
+
+// A file its owner made read-only is not replaced (root could, so the check is explicit).
+TEST(WorldFile, ReadOnlyTargetIsKept) {
+  const fs::path root = test::scratchDir();
+  const std::string old_text = "<?xml version=\"1.0\" ?>\n<world>\n</world>\n";
+  writeText(root / "world.xml", old_text);
+  fs::permissions(root / "world.xml", fs::perms::owner_read | fs::perms::group_read);
+  EXPECT_THROW(saveWorldFile(World{}, root / "world.xml"), Error);
+  EXPECT_EQ(readText(root / "world.xml"), old_text);
+  EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
+}
+
+// A name of 250 bytes is valid (the limit is 255); the temporary file must fit beside it.
+TEST(WorldFile, LongValidNameSaves) {
+  const fs::path root = test::scratchDir();
+  const std::string name = std::string(246, 'w') + ".xml";
+  saveWorldFile(World{}, root / name);
+  EXPECT_EQ(entries(root), std::vector<std::string>{name});
 }
 
 TEST(WorldFile, FailedRenameKeepsTheTargetAndLeavesNoTemporary) {

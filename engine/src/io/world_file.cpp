@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "graspkit/io/body_file.hpp"
+#include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mesh_loader.hpp"
@@ -352,25 +353,7 @@ std::string formatDofValues(const Robot& robot) {
 }
 
 void saveWorldFile(const World& world, const fs::path& file, const SaveOptions& options) {
-  const std::string text = worldText(world, options);
-  const fs::path temporary = file.string() + fmt::format(".tmp{}", ::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(SourceLocation{file.string()}, "cannot open a temporary file to save");
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      fs::remove(temporary);
-      throw Error(SourceLocation{file.string()}, "writing the world failed");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, file, ec);
-  if (ec) {
-    fs::remove(temporary);
-    throw Error(SourceLocation{file.string()}, "cannot replace the file: " + ec.message());
-  }
+  writeFileAtomically(file, worldText(world, options));
 }
 
 }  // namespace graspkit
