@@ -38,10 +38,18 @@ const Tree& tree() {
   return made;
 }
 
-bool below(const fs::path& file, const fs::path& folder) {
+// `file` resolved as far as the operating system lets it: a name too long to exist
+// (ENAMETOOLONG) is resolved through its parent, whose symbolic links still count.
+fs::path resolved(const fs::path& file) {
   std::error_code ec;
-  const fs::path real = fs::weakly_canonical(fs::absolute(file, ec), ec);
-  if (ec) return false;
+  const fs::path real = fs::weakly_canonical(file, ec);
+  if (!ec) return real;
+  if (!file.has_relative_path() || file.parent_path() == file) return file.lexically_normal();
+  return resolved(file.parent_path()) / file.filename();
+}
+
+bool below(const fs::path& file, const fs::path& folder) {
+  const fs::path real = resolved(fs::absolute(file)).lexically_normal();
   const fs::path base = fs::canonical(folder);
   auto f = real.begin();
   for (auto b = base.begin(); b != base.end(); ++b, ++f)
