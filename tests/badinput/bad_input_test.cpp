@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -121,6 +122,51 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadInputTest, ::testing::ValuesIn(kCorpus),
                          [](const ::testing::TestParamInfo<BadInput>& info) {
                            return std::string(info.param.name);
                          });
+
+// Files written here: inputs too large to keep in the corpus.
+fs::path writeBody(const std::string& name, const std::string& root_attributes,
+                   const std::string& before_root = "") {
+  const fs::path folder = test::scratchDir();
+  fs::copy_file(corpus() / "bodies" / "cube.off", folder / "cube.off");
+  std::ofstream(folder / name) << "<?xml version=\"1.0\" ?>\n"
+                               << before_root << "<root " << root_attributes << ">\n"
+                               << "  <material>plastic</material>\n  <mass>10</mass>\n"
+                               << "  <geometryFile type=\"off\">cube.off</geometryFile>\n"
+                               << "</root>\n";
+  return folder / name;
+}
+
+std::string attributes(int count) {
+  std::string text;
+  for (int i = 0; i < count; ++i) text += "a" + std::to_string(i) + "=\"1\" ";
+  return text;
+}
+
+// tinyxml2's duplicate check makes many attributes on one element quadratic: the bound refuses
+// them before it parses, with the element's line.
+TEST(BadInputGenerated, ManyAttributesOnOneElementAreRefused) {
+  const fs::path file = writeBody("many_attributes.xml", attributes(40000), "<!-- a = b -->\n");
+  try {
+    loadBodyFile(file);
+    FAIL() << "a body with 40,000 attributes on its root loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("many_attributes.xml:3: <root>"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than 256 attributes"), std::string::npos)
+        << e.what();
+  }
+}
+
+// The scan counts only attributes: '=' and '>' inside quoted values and comments, and up to
+// 256 attributes on an element, all load.
+TEST(BadInputGenerated, AttributeBoundCountsOnlyAttributes) {
+  const std::string equals(5000, '=');
+  const std::string noise = "<!-- " + equals + " > -->\n";
+  const std::string quoted = "q1=\"" + equals + ">\" q2='" + equals + "' ";
+  auto body = loadBodyFile(writeBody("quoted.xml", quoted + attributes(254), noise));
+  EXPECT_EQ(body->mesh->triangleCount(), 12u);
+  EXPECT_THROW(loadBodyFile(writeBody("one_too_many.xml", quoted + attributes(255))), Error);
+}
 
 TEST(BadInputCorpus, EveryCorpusFileIsTested) {
   std::set<std::string> tested(kSupportFiles);

@@ -8,11 +8,13 @@
 
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/log.hpp"
+#include "io/xml_attribute_count.hpp"
 
 namespace graspkit::xml {
 
 Document::Document(const std::filesystem::path& file) : file_(file) {
   const std::string text = readInputFile(file);
+  checkAttributeCounts(file, text);
   if (doc_.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     const int line = doc_.ErrorLineNum();
     const std::string detail = doc_.ErrorStr() ? doc_.ErrorStr() : "parse error";
