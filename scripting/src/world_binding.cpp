@@ -158,14 +158,11 @@ int robot(lua_State* L) {
 int contacts(lua_State* L) {
   const WorldHandle& handle = toWorldHandle(L, 1);
   const World& world = handle->world;
-  const std::vector<BodyRef> all = worldBodies(world);
+  const ContactRequest request;
   std::vector<Contact> found;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    for (std::size_t j = i + 1; j < all.size(); ++j) {
-      if (!world.collisionFilter().isActive(world, all[i], all[j])) continue;
-      ContactResult result = findContacts(world, all[i], all[j]);
-      found.insert(found.end(), result.contacts.begin(), result.contacts.end());
-    }
+  for (const BodyPair& pair : nearbyPairs(world, request.threshold)) {
+    ContactResult result = findContacts(world, pair.first, pair.second, request);
+    found.insert(found.end(), result.contacts.begin(), result.contacts.end());
   }
   lua_createtable(L, static_cast<int>(found.size()), 0);
   for (std::size_t i = 0; i < found.size(); ++i) {

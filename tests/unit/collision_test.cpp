@@ -3,17 +3,20 @@
 // this repository's bh8 hand and on small robots written here, shared BVHs across clones, and
 // the BVH cache under two threads.
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "collision/broad_phase.hpp"
 #include "graspkit/collision.hpp"
 #include "graspkit/collision_filter.hpp"
 #include "graspkit/error.hpp"
@@ -237,6 +240,70 @@ TEST(Collision, ReportInterestListAndFirstOnly) {
   world.collisionFilter().setBodyEnabled(BodyRef::body(1), false);
   EXPECT_FALSE(anyCollision(world, {}));
   EXPECT_FALSE(anyCollision(world, first));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The broad phase
+
+// The sweep must find exactly the overlapping pairs that testing every pair finds, in the same
+// order, on sets large enough to sweep (clustered, so most boxes meet several others).
+TEST(BroadPhase, SweepFindsWhatEveryPairFinds) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> where(0.0, 100.0), size(0.0, 6.0);
+  for (int n : {49, 200, 1000}) {
+    std::vector<WorldBox> boxes;
+    for (int i = 0; i < n; ++i)
+      boxes.push_back(
+          {Vector3(where(random) * n / 100.0, where(random) * 0.2, where(random) * 0.05),
+           Vector3(size(random), size(random), size(random))});
+    boxes[n / 2].center.x() = std::numeric_limits<double>::quiet_NaN();  // overlaps nothing
+    boxes[n / 3] = boxes[n / 4];                                         // identical boxes overlap
+    std::vector<std::pair<std::size_t, std::size_t>> swept, every;
+    collision::forEachOverlappingPair(boxes, [&](std::size_t i, std::size_t j) {
+      swept.emplace_back(i, j);
+      return true;
+    });
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (std::size_t j = i + 1; j < boxes.size(); ++j)
+        if (boxes[i].overlaps(boxes[j])) every.emplace_back(i, j);
+    EXPECT_EQ(swept, every) << n << " boxes";
+    EXPECT_GT(every.size(), static_cast<std::size_t>(n) / 2) << "the set should be clustered";
+  }
+}
+
+// nearbyPairs must hold every active pair a contact search could find something on: each pair
+// of cubes whose surfaces come within the margin (FCL distance, a second method), and no pair
+// the filter turns off. 60 cubes in a jittered row, a few close enough to touch.
+TEST(BroadPhase, NearbyPairsHoldEveryPairWithinTheMargin) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  World world;
+  for (int i = 0; i < 60; ++i)
+    addBody(world, cubeMesh(), translation(1.15 * i + jitter(random), jitter(random), 0.0));
+  world.collisionFilter().setBodyEnabled(BodyRef::body(5), false);
+  for (double margin : {0.0, 0.1, 0.5}) {
+    const std::vector<BodyPair> pairs = nearbyPairs(world, margin);
+    int near = 0;
+    for (int i = 0; i < 60; ++i) {
+      for (int j = i + 1; j < 60; ++j) {
+        const BodyRef a = BodyRef::body(i), b = BodyRef::body(j);
+        const bool listed = std::any_of(pairs.begin(), pairs.end(), [&](const BodyPair& p) {
+          return p.first == a && p.second == b;
+        });
+        const bool active = world.collisionFilter().isActive(world, a, b);
+        if (!active) EXPECT_FALSE(listed) << i << " " << j;
+        if (active && distance(world, a, b).distance <= margin) {
+          ++near;
+          EXPECT_TRUE(listed) << i << " " << j << " margin " << margin;
+        }
+      }
+    }
+    EXPECT_GT(near, 0) << "margin " << margin;
+    EXPECT_TRUE(
+        std::is_sorted(pairs.begin(), pairs.end(), [](const BodyPair& x, const BodyPair& y) {
+          return std::pair(x.first, x.second) < std::pair(y.first, y.second);
+        }));
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

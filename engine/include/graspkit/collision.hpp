@@ -49,10 +49,11 @@ struct CollisionRequest {
   bool firstOnly = false;
 };
 
-struct CollidingPair {
+struct BodyPair {
   BodyRef first;  // first comes before second in worldBodies() order
   BodyRef second;
 };
+using CollidingPair = BodyPair;
 
 // Every pair the world's CollisionFilter keeps active whose surfaces intersect, in worldBodies()
 // order of the first body, then of the second.
@@ -62,6 +63,14 @@ std::vector<CollidingPair> collisionReport(const World& world,
 // Whether any active pair with at least one body in `interest` collides; an empty `interest`
 // means every body.
 bool anyCollision(const World& world, std::span<const BodyRef> interest);
+
+// Every pair the world's CollisionFilter keeps active whose world bounding boxes come within
+// `margin` mm of each other: the only pairs a contact search with threshold `margin` (or, with
+// margin 0, a collision test) can find anything on. With `interest` not empty, only pairs with a
+// body in it. In worldBodies() order of the first body, then of the second. A sweep finds them,
+// so the cost follows the bodies and the pairs found, not the square of the bodies.
+std::vector<BodyPair> nearbyPairs(const World& world, double margin,
+                                  std::span<const BodyRef> interest = {});
 
 // The collision geometry of a mesh: its FCL bounding-volume hierarchy and its bounding box.
 // Opaque outside the collision module.

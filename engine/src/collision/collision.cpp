@@ -1,7 +1,7 @@
 // Collision queries. Each body is placed once per query: its shared geometry, its world pose and
-// the world box of its mesh. Pairs go through the filter, then the box test, and only then to
-// FCL, straight on the shared BVHs with the two poses: no FCL CollisionObject is made, so a query
-// allocates nothing per pair but FCL's own traversal state.
+// the world box of its mesh. Pairs come from the broad phase (overlapping boxes), go through
+// the filter, and only then to FCL, straight on the shared BVHs with the two poses: no FCL
+// CollisionObject is made, so a query allocates nothing per pair but FCL's own traversal state.
 
 #include "graspkit/collision.hpp"
 
@@ -10,6 +10,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "collision/broad_phase.hpp"
 #include "collision/collision_geometry.hpp"
 #include "graspkit/collision_filter.hpp"
 #include "graspkit/world.hpp"
@@ -70,33 +71,62 @@ DistanceResult distance(const World& world, const BodyRef& a, const BodyRef& b) 
   return {result.min_distance, result.nearest_points[0], result.nearest_points[1]};
 }
 
-std::vector<CollidingPair> collisionReport(const World& world, const CollisionRequest& request) {
-  const std::vector<BodyRef> refs = worldBodies(world);
+namespace {
+
+// The bodies with geometry, placed, and whether each is of interest (all are when none is named).
+struct PlacedWorld {
   std::vector<Placed> placed;
+  std::vector<WorldBox> boxes;
   std::vector<char> interesting;
-  placed.reserve(refs.size());
-  interesting.reserve(refs.size());
-  for (const BodyRef& ref : refs) {
-    placed.push_back(place(world, ref));
-    interesting.push_back(request.interest.empty() ||
-                          std::find(request.interest.begin(), request.interest.end(), ref) !=
-                              request.interest.end());
+};
+
+PlacedWorld placeWorld(const World& world, std::span<const BodyRef> interest, double margin) {
+  PlacedWorld out;
+  for (const BodyRef& ref : worldBodies(world)) {
+    Placed placed = place(world, ref);
+    if (!placed.geometry) continue;
+    out.boxes.push_back(collision::grown(placed.box, 0.5 * margin));
+    out.interesting.push_back(interest.empty() ||
+                              std::find(interest.begin(), interest.end(), ref) != interest.end());
+    out.placed.push_back(std::move(placed));
   }
+  return out;
+}
+
+// Calls visit(a, b) for each active pair with a body of interest whose boxes overlap (grown by
+// half the margin each), in worldBodies() order, until visit returns false.
+template <class Visit>
+void forEachActivePair(const World& world, const PlacedWorld& scene, Visit&& visit) {
   const CollisionFilter& filter = world.collisionFilter();
+  collision::forEachOverlappingPair(scene.boxes, [&](std::size_t i, std::size_t j) {
+    if (!scene.interesting[i] && !scene.interesting[j]) return true;
+    if (!filter.isActive(world, scene.placed[i].ref, scene.placed[j].ref)) return true;
+    return visit(scene.placed[i], scene.placed[j]);
+  });
+}
+
+}  // namespace
+
+std::vector<CollidingPair> collisionReport(const World& world, const CollisionRequest& request) {
+  const PlacedWorld scene = placeWorld(world, request.interest, 0.0);
   std::vector<CollidingPair> report;
-  for (std::size_t i = 0; i < placed.size(); ++i) {
-    if (!placed[i].geometry) continue;
-    for (std::size_t j = i + 1; j < placed.size(); ++j) {
-      if (!interesting[i] && !interesting[j]) continue;
-      // The box test first: it is a few flops, the filter a few lookups.
-      if (!placed[j].geometry || !placed[i].box.overlaps(placed[j].box)) continue;
-      if (!filter.isActive(world, placed[i].ref, placed[j].ref)) continue;
-      if (!narrowCollide(placed[i], placed[j])) continue;
-      report.push_back({placed[i].ref, placed[j].ref});
-      if (request.firstOnly) return report;
-    }
-  }
+  forEachActivePair(world, scene, [&](const Placed& a, const Placed& b) {
+    if (!narrowCollide(a, b)) return true;
+    report.push_back({a.ref, b.ref});
+    return !request.firstOnly;
+  });
   return report;
+}
+
+std::vector<BodyPair> nearbyPairs(const World& world, double margin,
+                                  std::span<const BodyRef> interest) {
+  const PlacedWorld scene = placeWorld(world, interest, std::max(margin, 0.0));
+  std::vector<BodyPair> pairs;
+  forEachActivePair(world, scene, [&](const Placed& a, const Placed& b) {
+    pairs.push_back({a.ref, b.ref});
+    return true;
+  });
+  return pairs;
 }
 
 bool anyCollision(const World& world, std::span<const BodyRef> interest) {

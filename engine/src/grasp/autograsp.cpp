@@ -19,23 +19,43 @@ constexpr double kContactInstant = 0.1;  // mm: bisection stops once closer than
 constexpr int kMaxBisections = 40;
 constexpr double kBreakawayLag = 1e-5;
 
-// The hand's links (base first) and, for each, the bodies the collision filter pairs it with.
+// The hand's links (base first), in worldBodies() order.
 struct HandBodies {
   std::vector<BodyRef> links;
-  std::vector<std::vector<BodyRef>> partners;
 };
 
 HandBodies handBodies(const World& world, int robot) {
   HandBodies hand;
-  const std::vector<BodyRef> all = worldBodies(world);
-  for (const BodyRef& ref : all) {
-    if (!ref.isLink() || ref.index != robot) continue;
-    hand.links.push_back(ref);
-    auto& partners = hand.partners.emplace_back();
-    for (const BodyRef& other : all)
-      if (world.collisionFilter().isActive(world, ref, other)) partners.push_back(other);
-  }
+  for (const BodyRef& ref : worldBodies(world))
+    if (ref.isLink() && ref.index == robot) hand.links.push_back(ref);
   return hand;
+}
+
+// Each (hand link, partner) the collision filter pairs, whose boxes come within `margin` mm, in
+// the order GraspIt! walks each link's partners: by link, then by partner, and a pair of two hand
+// links from each side. The broad phase keeps this linear in the bodies for a many-link hand.
+std::vector<std::pair<BodyRef, BodyRef>> handPairs(const World& world, const HandBodies& hand,
+                                                   double margin) {
+  const int robot = hand.links.empty() ? -1 : hand.links.front().index;
+  auto isHand = [&](const BodyRef& ref) { return ref.isLink() && ref.index == robot; };
+  std::vector<std::pair<BodyRef, BodyRef>> pairs;
+  for (const BodyPair& pair : nearbyPairs(world, margin, hand.links)) {
+    if (isHand(pair.first)) pairs.emplace_back(pair.first, pair.second);
+    if (isHand(pair.second)) pairs.emplace_back(pair.second, pair.first);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// The hand's pairs whose surfaces intersect, among those whose link `include` accepts.
+template <class Include>
+std::vector<std::pair<BodyRef, BodyRef>> collidingHandPairs(const World& world,
+                                                            const HandBodies& hand,
+                                                            Include&& include) {
+  std::vector<std::pair<BodyRef, BodyRef>> colliding;
+  for (const auto& [link, other] : handPairs(world, hand, 0.0))
+    if (include(link) && collide(world, link, other)) colliding.emplace_back(link, other);
+  return colliding;
 }
 
 void requireHand(const World& world, int robot) {
@@ -110,13 +130,10 @@ class Closing {
 
   // Active pairs (link, partner) whose surfaces intersect, among links that moved.
   std::vector<std::pair<BodyRef, BodyRef>> collisions(const std::vector<bool>& moved) const {
-    std::vector<std::pair<BodyRef, BodyRef>> pairs;
-    for (std::size_t i = 0; i < hand_.links.size(); ++i) {
-      if (!moved[i]) continue;
-      for (const BodyRef& other : hand_.partners[i])
-        if (collide(world_, hand_.links[i], other)) pairs.emplace_back(hand_.links[i], other);
-    }
-    return pairs;
+    return collidingHandPairs(world_, hand_, [&](const BodyRef& link) {
+      const auto at = std::lower_bound(hand_.links.begin(), hand_.links.end(), link);
+      return moved[static_cast<std::size_t>(at - hand_.links.begin())];
+    });
   }
 
   std::vector<bool> movedLinks(const std::vector<Transform>& before) const {
@@ -212,14 +229,12 @@ double closestDistance(const World& world, const std::vector<std::pair<BodyRef, 
 
 std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef* object) {
   world.robot(robot);  // range check
-  const HandBodies hand = handBodies(world, robot);
+  const ContactRequest request;
   std::vector<Contact> contacts;
-  for (std::size_t i = 0; i < hand.links.size(); ++i) {
-    for (const BodyRef& other : hand.partners[i]) {
-      if (object && !(other == *object)) continue;
-      ContactResult found = findContacts(world, hand.links[i], other);
-      contacts.insert(contacts.end(), found.contacts.begin(), found.contacts.end());
-    }
+  for (const auto& [link, other] : handPairs(world, handBodies(world, robot), request.threshold)) {
+    if (object && !(other == *object)) continue;
+    ContactResult found = findContacts(world, link, other, request);
+    contacts.insert(contacts.end(), found.contacts.begin(), found.contacts.end());
   }
   return contacts;
 }
@@ -311,9 +326,8 @@ bool openUntilFree(World& world, int robot) {
   requireHand(world, robot);
   const HandBodies hand = handBodies(world, robot);
   auto free = [&] {
-    for (std::size_t i = 0; i < hand.links.size(); ++i)
-      for (const BodyRef& other : hand.partners[i])
-        if (collide(world, hand.links[i], other)) return false;
+    for (const auto& [link, other] : handPairs(world, hand, 0.0))
+      if (collide(world, link, other)) return false;
     return true;
   };
   const RobotModel& model = world.robot(robot).model();
@@ -342,11 +356,7 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
   world.robot(robot);  // range check
   const HandBodies hand = handBodies(world, robot);
   auto colliding = [&] {
-    std::vector<std::pair<BodyRef, BodyRef>> pairs;
-    for (std::size_t i = 0; i < hand.links.size(); ++i)
-      for (const BodyRef& other : hand.partners[i])
-        if (collide(world, hand.links[i], other)) pairs.emplace_back(hand.links[i], other);
-    return pairs;
+    return collidingHandPairs(world, hand, [](const BodyRef&) { return true; });
   };
   if (!colliding().empty()) {
     throw Error(fmt::format("robot '{}' collides before it approaches", world.robot(robot).name()));

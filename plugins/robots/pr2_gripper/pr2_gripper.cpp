@@ -51,14 +51,10 @@ bool touches(const std::vector<graspkit::Contact>& contacts, const BodyRef& link
 }
 
 bool handCollides(const World& world, int robot) {
-  for (const BodyRef& ref : graspkit::worldBodies(world)) {
-    if (!ref.isLink() || ref.index != robot) continue;
-    for (const BodyRef& other : graspkit::worldBodies(world))
-      if (world.collisionFilter().isActive(world, ref, other) &&
-          graspkit::collide(world, ref, other))
-        return true;
-  }
-  return false;
+  std::vector<BodyRef> links;
+  for (const BodyRef& ref : graspkit::worldBodies(world))
+    if (ref.isLink() && ref.index == robot) links.push_back(ref);
+  return !links.empty() && graspkit::anyCollision(world, links);
 }
 
 class Pr2Gripper2010 final : public graspkit::RobotType {
