@@ -168,6 +168,52 @@ TEST(BadInputGenerated, AttributeBoundCountsOnlyAttributes) {
   EXPECT_THROW(loadBodyFile(writeBody("one_too_many.xml", quoted + attributes(255))), Error);
 }
 
+// A robot file with `dofs` DOFs, one chain of `joints` joints (theta d0) and `fixed` Fixed links
+// after its Revolute ones, one element per line so the culprit's line is known.
+fs::path writeRobot(const std::string& name, int dofs, int joints, int fixed) {
+  const fs::path folder = test::scratchDir();
+  fs::copy(corpus() / "robots" / "iv", folder / "iv");
+  std::ofstream out(folder / name);
+  out << "<?xml version=\"1.0\" ?>\n<robot type=\"Hand\">\n<palm>cube.xml</palm>\n";
+  for (int i = 0; i < dofs; ++i)
+    out << "<dof type=\"r\"><defaultVelocity>1</defaultVelocity><maxEffort>1</maxEffort><Kp>1</Kp>"
+           "<Kd>1</Kd><draggerScale>1</draggerScale></dof>\n";
+  out << "<chain>\n";
+  for (int i = 0; i < joints; ++i)
+    out << "<joint type=\"Revolute\"><theta>d0</theta><d>0</d><a>10</a><alpha>0</alpha>"
+           "<minValue>-90</minValue><maxValue>90</maxValue></joint>\n";
+  for (int i = 0; i < joints; ++i) out << "<link dynamicJointType=\"Revolute\">cube.xml</link>\n";
+  for (int i = 0; i < fixed; ++i) out << "<link dynamicJointType=\"Fixed\">cube.xml</link>\n";
+  out << "</chain>\n</robot>\n";
+  return folder / name;
+}
+
+void expectRobotRefused(const fs::path& file, const std::string& where, const std::string& why) {
+  try {
+    loadRobotFile(file);
+    FAIL() << file << " loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+  }
+}
+
+// A robot's size is bounded where it is read (its default eigengrasps alone hold DOFs^2
+// numbers): the first element past each bound is named, and a robot at the bounds loads.
+TEST(BadInputGenerated, RobotSizeIsBounded) {
+  expectRobotRefused(writeRobot("dofs.xml", kMaxRobotDofs + 1, 1, 0),
+                     "dofs.xml:" + std::to_string(4 + kMaxRobotDofs) + ": <dof>",
+                     "more than 1024 DOFs in one robot");
+  expectRobotRefused(writeRobot("joints.xml", 1, kMaxRobotJoints + 1, 0),
+                     "joints.xml:" + std::to_string(6 + kMaxRobotJoints) + ": <joint>",
+                     "more than 4096 joints in one robot");
+  expectRobotRefused(writeRobot("links.xml", 1, 1, kMaxRobotJoints),
+                     "links.xml:" + std::to_string(7 + kMaxRobotJoints) + ": <link>",
+                     "more than 4096 links in one robot");
+  const auto robot = loadRobotFile(writeRobot("largest.xml", 1, kMaxRobotJoints, 0));
+  EXPECT_EQ(robot->jointCount(), kMaxRobotJoints);
+}
+
 TEST(BadInputCorpus, EveryCorpusFileIsTested) {
   std::set<std::string> tested(kSupportFiles);
   for (const BadInput& input : kCorpus) tested.insert(input.path);

@@ -213,8 +213,12 @@ class RobotReader {
     robot->name = file_.stem().string();
     readType(root, *robot);
     readPalm(root, *robot);
-    for (const XMLElement* e : xml::children(root, "dof"))
+    for (const XMLElement* e : xml::children(root, "dof")) {
+      if (robot->dofs.size() == kMaxRobotDofs)
+        throw Error(xml::at(file_, *e),
+                    fmt::format("more than {} DOFs in one robot", kMaxRobotDofs));
       robot->dofs.push_back(readDof(file_, *e));
+    }
     if (robot->dofs.empty()) throw Error(xml::at(file_, root), "a robot needs at least one <dof>");
     for (const XMLElement* e : xml::children(root, "chain")) readChain(*e, *robot);
     if (robot->chains.empty()) {
@@ -294,11 +298,21 @@ class RobotReader {
     if (const auto* t = xml::child(element, "transform")) chain.base = xml::transform(file_, *t);
     const int dof_count = static_cast<int>(robot.dofs.size());
     for (const XMLElement* j : xml::children(element, "joint")) {
+      if (chain.firstJoint + static_cast<int>(chain.joints.size()) == kMaxRobotJoints) {
+        throw Error(xml::at(file_, *j),
+                    fmt::format("more than {} joints in one robot", kMaxRobotJoints));
+      }
       chain.joints.push_back(readJoint(file_, *j, dof_count));
     }
     if (chain.joints.empty()) throw Error(xml::at(file_, element), "a chain needs a <joint>");
     int last_joint = -1;
+    int links_before = 0;
+    for (const KinematicChain& other : robot.chains)
+      links_before += static_cast<int>(other.links.size());
     for (const XMLElement* l : xml::children(element, "link")) {
+      if (links_before + static_cast<int>(chain.links.size()) == kMaxRobotJoints)
+        throw Error(xml::at(file_, *l),
+                    fmt::format("more than {} links in one robot", kMaxRobotJoints));
       Link link;
       link.jointType = dynamicJointType(file_, *l);
       last_joint += jointsConsumed(link.jointType);

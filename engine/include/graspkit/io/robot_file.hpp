@@ -10,6 +10,12 @@
 
 namespace graspkit {
 
+// Bounds on one robot. GraspIt!'s hands have at most a few dozen DOFs and links; the bounds keep
+// a hostile file from costing memory out of proportion to its size (a robot's eigengrasp matrix,
+// identity by default, holds DOFs x DOFs numbers) while leaving room for whole humanoids.
+inline constexpr int kMaxRobotDofs = 1024;
+inline constexpr int kMaxRobotJoints = 4096;  // over all chains, and as many links
+
 // Throws graspkit::Error naming file, line and element. The <robot type> is looked up in the
 // registry (loading the plugin that provides it); an unknown type is an error listing the
 // available types and the plugin search path, unless options.genericRobotFallback asks for a
