@@ -2,13 +2,11 @@
 
 #include <fmt/format.h>
 #include <tinyxml2.h>
-#include <unistd.h>
 
-#include <cerrno>
 #include <cstring>
-#include <fstream>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/output_file.hpp"
 
 namespace graspkit::lua {
 namespace {
@@ -137,24 +135,11 @@ std::string junitReport(const TestReport& report) {
 }
 
 void writeJunitReport(const TestReport& report, const fs::path& file) {
-  const std::string text = junitReport(report);
-  fs::path temporary = file;
-  temporary += fmt::format(".tmp{}", static_cast<long>(getpid()));
-  auto fail = [&](const std::string& why) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw Error(SourceLocation{file.string()}, "cannot write the JUnit report: " + why);
-  };
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail(std::strerror(errno));
-    out << text;
-    out.close();
-    if (!out) fail("writing failed");
+  try {
+    writeFileAtomically(file, junitReport(report));
+  } catch (const Error& e) {
+    throw Error(SourceLocation{file.string()}, "cannot write the JUnit report: " + e.message());
   }
-  std::error_code ec;
-  fs::rename(temporary, file, ec);
-  if (ec) fail(ec.message());
 }
 
 }  // namespace graspkit::lua

@@ -2,17 +2,22 @@
 // encoding, save -> load -> save stability, atomic saves, <filename> resolution order and the
 // camera's x y z w quaternion.
 
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -20,6 +25,7 @@
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
+#include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/version.hpp"
@@ -384,37 +390,78 @@ TEST(WorldFile, SuccessfulSaveLeavesNoTemporary) {
                   engineVersion()));
 }
 
+// Writes beyond `bytes` fail with EFBIG while it lives (RLIMIT_FSIZE; SIGXFSZ, which would end
+// the process, is ignored meanwhile). Root cannot write past it either, unlike a read-only folder.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    ::getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit = saved_;
+    limit.rlim_cur = bytes;
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    ::setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = nullptr;
+};
+
 TEST(WorldFile, FailedWriteKeepsTheOldFile) {
-  // Running as root, a read-only folder does not stop a write, so the failure is provoked by
-  // pointing the temporary file saveWorldFile writes (world.xml.tmp<pid>, beside the target)
-  // at /dev/full, where every write fails with ENOSPC.
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const fs::path root = test::scratchDir();
   const std::string old_text = "<?xml version=\"1.0\" ?>\n<world>\n<!-- precious -->\n</world>\n";
   writeText(root / "world.xml", old_text);
-  const fs::path temporary = root / ("world.xml.tmp" + std::to_string(::getpid()));
-  fs::create_symlink("/dev/full", temporary);
-
   World world;
   Camera camera;
   camera.focalDistance = 1;
   world.setCamera(camera);
-  EXPECT_THROW(saveWorldFile(world, root / "world.xml"), Error);
+  {
+    const FileSizeLimit limit(16);
+    EXPECT_THROW(saveWorldFile(world, root / "world.xml"), Error);
+  }
   EXPECT_EQ(readText(root / "world.xml"), old_text);
   EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
 }
 
 // The failure says why, in the operating system's words.
 TEST(WorldFile, FailedWriteSaysWhy) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const fs::path root = test::scratchDir();
-  fs::create_symlink("/dev/full", root / ("world.xml.tmp" + std::to_string(::getpid())));
+  const FileSizeLimit limit(16);
   try {
     saveWorldFile(World{}, root / "world.xml");
-    ADD_FAILURE() << "a write to a full disk succeeded";
+    ADD_FAILURE() << "a write past the file size limit succeeded";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(std::strerror(ENOSPC)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(std::strerror(EFBIG)), std::string::npos) << e.what();
   }
+}
+
+// A save killed while it writes leaves the old file and nothing else: the text goes to an unnamed
+// file that gets its name only once it is whole. The child writes 128 MB and is killed 20 ms in.
+TEST(WorldFile, KilledSaveLeavesNoTemporary) {
+  const fs::path root = test::scratchDir();
+  const std::string old_text = "<?xml version=\"1.0\" ?>\n<world>\n</world>\n";
+  writeText(root / "world.xml", old_text);
+  const std::string big(128u << 20, 'x');
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    try {
+      writeFileAtomically(root / "world.xml", big);
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ::kill(child, SIGKILL);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  const std::string now = readText(root / "world.xml");
+  EXPECT_TRUE(now == old_text || now.size() == big.size()) << now.size() << " bytes";
+  EXPECT_EQ(entries(root), std::vector<std::string>{"world.xml"});
 }
 
 // A file its owner made read-only is not replaced (root could, so the check is explicit).

@@ -42,6 +42,32 @@ int writeAll(int fd, std::string_view text) {
   return ::fsync(fd) == 0 ? 0 : errno;
 }
 
+// An unnamed file in `folder` (Linux O_TMPFILE): a process killed while it writes leaves
+// nothing behind. -1 where the file system cannot make one (then a named temporary is used).
+int openUnnamed(const fs::path& folder) {
+#ifdef O_TMPFILE
+  return ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+#else
+  (void)folder;
+  errno = EOPNOTSUPP;
+  return -1;
+#endif
+}
+
+// Gives the written, flushed unnamed file `fd` the name `temporary` (so it can be renamed over
+// the target); errno on failure.
+int nameUnnamed(int fd, const fs::path& temporary) {
+  const std::string self = fmt::format("/proc/self/fd/{}", fd);
+  if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary.c_str(), AT_SYMLINK_FOLLOW) == 0)
+    return 0;
+  if (errno != EEXIST) return errno;
+  // A temporary left by an earlier process with this pid, killed between naming and renaming.
+  ::unlink(temporary.c_str());
+  return ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary.c_str(), AT_SYMLINK_FOLLOW) == 0
+             ? 0
+             : errno;
+}
+
 }  // namespace
 
 void writeFileAtomically(const fs::path& file, std::string_view text) {
@@ -52,22 +78,33 @@ void writeFileAtomically(const fs::path& file, std::string_view text) {
     throw Error(SourceLocation{file.string()},
                 "the file is read-only; make it writable to replace it");
   }
+  const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   const fs::path temporary = temporaryFor(file);
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(file, "cannot create a temporary file beside it to save", errno);
-  const int written = writeAll(fd, text);
+  bool named = false;  // whether `temporary` exists and must be removed on failure
+  int fd = openUnnamed(folder);
+  if (fd < 0 && (errno == ENOENT || errno == ENOTDIR || errno == EACCES || errno == EROFS))
+    fail(file, "cannot create a file in its folder to save", errno);
+  if (fd < 0) {
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) fail(file, "cannot create a temporary file beside it to save", errno);
+    named = true;
+  }
+  int error = writeAll(fd, text);
+  if (error == 0 && !named) {
+    error = nameUnnamed(fd, temporary);
+    named = error == 0;
+  }
   const int closed = ::close(fd) == 0 ? 0 : errno;
-  if (written != 0 || closed != 0) {
-    fs::remove(temporary, ec);
-    fail(file, "writing failed", written != 0 ? written : closed);
+  if (error != 0 || closed != 0) {
+    if (named) fs::remove(temporary, ec);
+    fail(file, "writing failed", error != 0 ? error : closed);
   }
   if (::rename(temporary.c_str(), file.c_str()) != 0) {
-    const int error = errno;
+    error = errno;
     fs::remove(temporary, ec);
     fail(file, "cannot replace the file", error);
   }
   // The rename is durable once the folder is flushed too.
-  const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
     ::fsync(dir);
     ::close(dir);

@@ -1,13 +1,15 @@
 #pragma once
 // The one way the engine and its programs replace a file: never half a file, never silently.
 //
-// writeFileAtomically() writes the text to a temporary file beside the target, flushes it to the
-// disk (fsync), renames it over the target and flushes the folder, so that after a crash or a
-// power cut the target holds the old text or the new, whole. It refuses a target that is
-// read-only (its owner-write permission is off: the user protected it) and reports every failure
-// with the operating system's reason; the temporary file is removed on failure. A process
-// killed while writing leaves its temporary file (named "<target>.tmp<pid>", or
-// ".graspkit.tmp<pid>" when the target's name is too long to extend).
+// writeFileAtomically() writes the text to an unnamed file in the target's folder (Linux
+// O_TMPFILE), flushes it to the disk (fsync), names it "<target>.tmp<pid>" (".graspkit.tmp<pid>"
+// when the target's name is too long to extend), renames it over the target and flushes the
+// folder. After a crash or a power cut the target holds the old text or the new, whole; a process
+// killed while it writes leaves nothing behind (only a kill in the instant between naming and
+// renaming leaves the named file). On a file system without O_TMPFILE the named file is written
+// directly, and a kill then leaves it. It refuses a target that is read-only (its owner-write
+// permission is off: the user protected it) and reports every failure with the operating
+// system's reason; the temporary file is removed on failure.
 
 #include <filesystem>
 #include <string_view>
