@@ -2,6 +2,7 @@
 // demand and is recorded with its provenance; each broken plugin is refused with an error that
 // names the file and the failure, and registers nothing.
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -24,6 +25,7 @@ const fs::path kCorpus = GRASPKIT_PLUGIN_CORPUS_DIR;
 const fs::path kGood = kCorpus / "good";
 const fs::path kBroken = kCorpus / "broken";
 const fs::path kThrowing = kCorpus / "throwing";
+const fs::path kDeadly = kCorpus / "deadly";
 
 // The error message of loading `file` into a fresh registry whose path holds only the good plugin.
 std::string loadError(const std::string& file) {
@@ -256,6 +258,89 @@ TEST(PluginLoader, TheEngineFindsItsOwnPluginsWithoutConfiguration) {
   EXPECT_EQ(from->plugin, "robonaut");
   EXPECT_EQ(fs::canonical(from->file.parent_path()),
             fs::canonical(fs::path(GRASPKIT_BINARY_DIR) / "lib" / "graspkit" / "plugins"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The probe: plugins are opened in a child process before they enter this one
+
+std::string failureOf(Registry& registry, const std::string& file) {
+  for (const PluginInfo& info : registry.plugins().failures())
+    if (info.file.filename() == file) return info.error;
+  return "(not among the failures)";
+}
+
+// Plugins that abort (in a static constructor or their register function), call exit() or never
+// return, placed before the good plugin on the path, cost a world that needs the good one nothing
+// but warnings: this process survives to check, and each failure says what happened.
+TEST(PluginProbe, PluginsThatCrashExitOrHangAreContained) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kDeadly, kGood});
+  registry.plugins().setProbe(PluginProbe{true, std::chrono::milliseconds(1500)});
+  std::vector<std::string> warnings;
+  const WarningHandler previous = setWarningHandler(
+      [&](const SourceLocation&, const std::string& text) { warnings.push_back(text); });
+  EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::RobotType, "CorpusGripper"));
+  setWarningHandler(previous);
+  EXPECT_EQ(registry.plugins().failures().size(), 4u);
+  // Under AddressSanitizer a crash may end the child through the sanitizer's exit instead.
+  for (const char* file : {"aborts.so", "aborts_on_open.so"}) {
+    const std::string error = failureOf(registry, file);
+    EXPECT_TRUE(error.find("crashed while loading: signal 6") != std::string::npos ||
+                error.find("ended the process while loading") != std::string::npos)
+        << file << ": " << error;
+  }
+  EXPECT_NE(failureOf(registry, "exits.so").find("ended the process while loading (exit status"),
+            std::string::npos)
+      << failureOf(registry, "exits.so");
+  EXPECT_NE(failureOf(registry, "hangs.so").find("did not finish loading within 1.5 s"),
+            std::string::npos)
+      << failureOf(registry, "hangs.so");
+  EXPECT_EQ(warnings.size(), 4u);
+  ASSERT_EQ(registry.plugins().loaded().size(), 1u);
+  EXPECT_EQ(registry.plugins().loaded()[0].name, "corpus_good");
+}
+
+// Loading a deadly plugin by name is an error naming it, not the end of the host.
+TEST(PluginProbe, LoadingACrashingPluginByNameIsAnError) {
+  Registry registry;
+  try {
+    registry.plugins().load(kDeadly / "aborts_on_open.so");
+    FAIL() << "a plugin that aborts while loading loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((kDeadly / "aborts_on_open.so").string()),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("while loading"), std::string::npos) << e.what();
+  }
+}
+
+// Of the healthy plugins, only the one that provides a needed name enters the process; the
+// probe's errors are the ones an in-process load gives.
+TEST(PluginProbe, OnlyThePluginProvidingTheNameIsLoaded) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kThrowing, kBroken, kGood});
+  EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::QualityMeasure, "corpus_constant"));
+  std::vector<std::string> loaded;
+  for (const PluginInfo& info : registry.plugins().loaded()) loaded.push_back(info.name);
+  EXPECT_EQ(loaded, std::vector<std::string>{"corpus_good"});
+  EXPECT_EQ(failureOf(registry, "wrong_abi.so"),
+            "built for plugin ABI 999, this engine loads ABI 2");
+  EXPECT_FALSE(registry.contains(FactoryKind::QualityMeasure, "corpus_throws_std"));
+  EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::QualityMeasure, "corpus_throws_std"));
+  EXPECT_EQ(registry.plugins().loaded().size(), 2u);
+}
+
+// With the probe off (GRASPKIT_PLUGIN_PROBE=0), plugins load in place, in path order.
+TEST(PluginProbe, TheProbeCanBeTurnedOff) {
+  setenv("GRASPKIT_PLUGIN_PROBE", "0", 1);
+  Registry registry;
+  EXPECT_FALSE(registry.plugins().probe().inChildProcess);
+  unsetenv("GRASPKIT_PLUGIN_PROBE");
+  EXPECT_TRUE(registry.plugins().probe().inChildProcess);
+  registry.plugins().setProbe(PluginProbe{false, std::chrono::milliseconds(1000)});
+  registry.plugins().setSearchPath(std::vector<fs::path>{kThrowing, kGood});
+  EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::RobotType, "CorpusGripper"));
+  EXPECT_EQ(registry.plugins().loaded().size(), 2u);  // the throwing plugin too, met on the way
 }
 
 }  // namespace

@@ -10,7 +10,15 @@
 //      work with no environment variable;
 //   3. the folder recorded when the engine was installed.
 // A plugin file is any regular `*.so` file in those folders (not their subfolders).
+//
+// Plugins are native code that runs as it loads. Before a plugin the loader has not seen enters
+// the process, a forked child opens it (and every other unseen plugin on the path, in one child)
+// and reports its name and what it provides: a plugin that crashes, hangs or exits while loading
+// is then only an error naming it, and of the healthy ones only the plugin that provides a needed
+// name is loaded into the process. GRASPKIT_PLUGIN_PROBE=0 (or setProbe) turns the child off, to
+// debug a plugin's loading in place.
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -31,6 +39,12 @@ struct PluginInfo {
   std::vector<std::pair<FactoryKind, std::string>> provides;
 };
 
+// How the loader opens plugins it has not seen.
+struct PluginProbe {
+  bool inChildProcess = true;                 // probe in a forked child first
+  std::chrono::milliseconds timeout{10'000};  // a plugin still loading after this is killed
+};
+
 class PluginLoader {
  public:
   explicit PluginLoader(Registry& registry);
@@ -41,14 +55,21 @@ class PluginLoader {
   void setSearchPath(std::optional<std::vector<std::filesystem::path>> folders);
   std::string describeSearchPath() const;  // "a:b:c"
 
+  // The probe settings: setProbe's, else the default with GRASPKIT_PLUGIN_PROBE=0 or "off"
+  // turning the child off. nullopt restores the default.
+  PluginProbe probe() const;
+  void setProbe(std::optional<PluginProbe> probe);
+
   // Loads one plugin file. Throws graspkit::Error naming the file for: a file that is not a
   // loadable shared object, a missing graspkit_plugin_v1 symbol, an ABI or descriptor-size
   // mismatch, a plugin name already loaded from another file, a register function that throws,
   // a factory name already provided. Loading the same file twice returns the first result.
   const PluginInfo& load(const std::filesystem::path& file);
 
-  // Loads the plugins on the search path, in order, until one provides `name`. Plugins that fail
-  // are remembered (see failures()) and skipped. Returns whether the name is now registered.
+  // Loads the plugin on the search path that provides `name`: the first, in path order, whose
+  // probe lists it (without probing, each plugin in order until one provides it). Plugins that
+  // fail before it are remembered (see failures()), warned about and skipped; the others are
+  // not loaded. Returns whether the name is now registered.
   bool loadProviding(FactoryKind kind, const std::string& name);
 
   // Loads every plugin on the search path; returns one entry per plugin file found, loaded or not.
@@ -58,12 +79,20 @@ class PluginLoader {
   std::vector<PluginInfo> failures() const;
 
  private:
+  static std::filesystem::path keyOf(const std::filesystem::path& file);  // canonical path
   std::vector<std::filesystem::path> candidateFiles() const;
+  // Probes, in one child, the files neither loaded nor probed yet (when probing is on).
+  void probeUnseen(const std::vector<std::filesystem::path>& files);
+  const PluginInfo* probeFailure(const std::filesystem::path& key) const;
+  // The file's outcome in this process: its probe's failure, or an in-process load.
+  const PluginInfo& settle(const std::filesystem::path& file);
   PluginInfo tryLoad(const std::filesystem::path& file);
 
   Registry& registry_;
   std::optional<std::vector<std::filesystem::path>> search_path_;
-  std::map<std::filesystem::path, PluginInfo> probed_;  // by canonical path
+  std::optional<PluginProbe> probe_;
+  std::map<std::filesystem::path, PluginInfo> probed_;  // loaded or failed here, by canonical path
+  std::map<std::filesystem::path, PluginInfo> probes_;  // what the child found, by canonical path
 };
 
 // Text form of a plugin's provided names: "robot type Barrett, quality measure foo".

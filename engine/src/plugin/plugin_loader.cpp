@@ -13,39 +13,13 @@
 #include "graspkit/log.hpp"
 #include "graspkit/plugin.hpp"
 #include "graspkit/registry.hpp"
+#include "plugin/plugin_file.hpp"
+#include "plugin/plugin_probe.hpp"
 
 namespace fs = std::filesystem;
 
 namespace graspkit {
 namespace {
-
-// Collects a plugin's factories so they can be checked and committed together.
-class StagingRegistrar final : public Registrar {
- public:
-  struct Staged {
-    FactoryKind kind;
-    std::string name;
-    RobotTypeFactory robotType;
-    QualityMeasureFactory qualityMeasure;
-    SearchEnergyFactory searchEnergy;
-    PlannerFactory planner;
-    bool hasFactory() const { return robotType || qualityMeasure || searchEnergy || planner; }
-  };
-  std::vector<Staged> staged;
-
-  void addRobotType(const std::string& name, RobotTypeFactory factory) override {
-    staged.push_back({FactoryKind::RobotType, name, std::move(factory), {}, {}, {}});
-  }
-  void addQualityMeasure(const std::string& name, QualityMeasureFactory factory) override {
-    staged.push_back({FactoryKind::QualityMeasure, name, {}, std::move(factory), {}, {}});
-  }
-  void addSearchEnergy(const std::string& name, SearchEnergyFactory factory) override {
-    staged.push_back({FactoryKind::SearchEnergy, name, {}, {}, std::move(factory), {}});
-  }
-  void addPlanner(const std::string& name, PlannerFactory factory) override {
-    staged.push_back({FactoryKind::Planner, name, {}, {}, {}, std::move(factory)});
-  }
-};
 
 std::vector<fs::path> splitPathList(const char* text) {
   std::vector<fs::path> folders;
@@ -71,11 +45,6 @@ fs::path programFolder() {
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   return ec ? fs::path{} : exe.parent_path();
-}
-
-std::string dlErrorText() {
-  const char* text = dlerror();
-  return text ? text : "unknown dlopen error";
 }
 
 }  // namespace
@@ -138,61 +107,23 @@ std::vector<fs::path> PluginLoader::candidateFiles() const {
 }
 
 PluginInfo PluginLoader::tryLoad(const fs::path& file) {
-  PluginInfo info;
-  info.file = file;
+  plugin::OpenedPlugin opened = plugin::openPlugin(file);
+  PluginInfo& info = opened.info;
   auto fail = [&](std::string why) {
     info.error = std::move(why);
+    info.provides.clear();
     return info;
   };
-
-  // Never dlclose: a plugin's code may have run (static constructors, its register function),
-  // and unloading it could leave dangling pointers behind in the process.
-  trace(fmt::format("loading plugin {} (its static constructors run now)", file.string()));
-  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) return fail("cannot load: " + dlErrorText());
-  dlerror();
-  void* symbol = dlsym(handle, GRASPKIT_PLUGIN_SYMBOL);
-  if (!symbol) return fail("not a graspkit plugin: no symbol " GRASPKIT_PLUGIN_SYMBOL);
-  auto entry = reinterpret_cast<graspkit_plugin_entry>(symbol);
-  const graspkit_plugin_descriptor* descriptor = nullptr;
-  try {
-    descriptor = entry();
-  } catch (const std::exception& e) {
-    return fail(fmt::format("{} threw: {}", GRASPKIT_PLUGIN_SYMBOL, e.what()));
-  } catch (...) {
-    return fail(GRASPKIT_PLUGIN_SYMBOL " threw a non-standard exception");
-  }
-  if (!descriptor) return fail(GRASPKIT_PLUGIN_SYMBOL " returned no descriptor");
-  // Only the first two fields are read before both checks pass: they are the ABI's fixed part.
-  if (descriptor->abi_version != GRASPKIT_PLUGIN_ABI_VERSION)
-    return fail(fmt::format("built for plugin ABI {}, this engine loads ABI {}",
-                            descriptor->abi_version, GRASPKIT_PLUGIN_ABI_VERSION));
-  if (descriptor->descriptor_size != sizeof(graspkit_plugin_descriptor))
-    return fail(fmt::format("descriptor size {} bytes, this engine expects {}",
-                            descriptor->descriptor_size, sizeof(graspkit_plugin_descriptor)));
-  if (!descriptor->name || !*descriptor->name) return fail("the descriptor has no plugin name");
-  info.name = descriptor->name;
-  info.version = descriptor->version ? descriptor->version : "";
-  if (!descriptor->register_factories) return fail("the descriptor has no register function");
+  if (!info.error.empty()) return info;
+  info.provides.clear();
   for (const auto& [path, other] : probed_)
     if (other.loaded && other.name == info.name)
       return fail(fmt::format("a plugin named '{}' is already loaded from {}", info.name,
                               other.file.string()));
 
-  StagingRegistrar staging;
-  trace(fmt::format("calling the register function of plugin '{}' ({})", info.name, file.string()));
-  try {
-    descriptor->register_factories(staging);
-  } catch (const std::exception& e) {
-    return fail(fmt::format("plugin '{}' threw while registering: {}", info.name, e.what()));
-  } catch (...) {
-    return fail(
-        fmt::format("plugin '{}' threw a non-standard exception while registering", info.name));
-  }
-
   // Check everything before committing anything.
   std::set<std::pair<FactoryKind, std::string>> names;
-  for (const auto& item : staging.staged) {
+  for (const auto& item : opened.staging.staged) {
     const char* kind = toString(item.kind);
     if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
     if (!item.hasFactory())
@@ -205,7 +136,7 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
                               owner->file.empty() ? "" : " (" + owner->file.string() + ")"));
   }
   const Provenance from{info.name, info.version, file};
-  for (auto& item : staging.staged) {
+  for (auto& item : opened.staging.staged) {
     switch (item.kind) {
       case FactoryKind::RobotType:
         registry_.addRobotType(item.name, std::move(item.robotType), from);
@@ -226,28 +157,85 @@ PluginInfo PluginLoader::tryLoad(const fs::path& file) {
   return info;
 }
 
+PluginProbe PluginLoader::probe() const {
+  if (probe_) return *probe_;
+  PluginProbe probe;
+  if (const char* env = std::getenv("GRASPKIT_PLUGIN_PROBE");
+      env && (std::string_view(env) == "0" || std::string_view(env) == "off"))
+    probe.inChildProcess = false;
+  return probe;
+}
+
+void PluginLoader::setProbe(std::optional<PluginProbe> probe) {
+  std::lock_guard lock(registry_.mutex_);
+  probe_ = probe;
+}
+
+fs::path PluginLoader::keyOf(const fs::path& file) {
+  std::error_code ec;
+  fs::path key = fs::weakly_canonical(file, ec);
+  return ec ? file : key;
+}
+
+void PluginLoader::probeUnseen(const std::vector<fs::path>& files) {
+  const PluginProbe settings = probe();
+  if (!settings.inChildProcess) return;
+  std::vector<fs::path> unseen;
+  for (const fs::path& file : files) {
+    const fs::path key = keyOf(file);
+    if (!probed_.count(key) && !probes_.count(key)) unseen.push_back(file);
+  }
+  if (unseen.empty()) return;
+  try {
+    const std::vector<PluginInfo> results = plugin::probePlugins(unseen, settings.timeout);
+    for (std::size_t i = 0; i < unseen.size(); ++i) probes_[keyOf(unseen[i])] = results[i];
+  } catch (const Error& e) {
+    // No child process (a process limit, say): plugins then load straight into this process.
+    warn(SourceLocation{}, fmt::format("{}; loading plugins without probing them", e.what()));
+    probe_ = PluginProbe{false, settings.timeout};
+  }
+}
+
+const PluginInfo* PluginLoader::probeFailure(const fs::path& key) const {
+  const auto it = probes_.find(key);
+  return it != probes_.end() && !it->second.loaded ? &it->second : nullptr;
+}
+
+const PluginInfo& PluginLoader::settle(const fs::path& file) {
+  const fs::path key = keyOf(file);
+  if (auto it = probed_.find(key); it != probed_.end()) return it->second;
+  probeUnseen({file});
+  if (const PluginInfo* failed = probeFailure(key))
+    return probed_.emplace(key, *failed).first->second;
+  return probed_.emplace(key, tryLoad(file)).first->second;
+}
+
 const PluginInfo& PluginLoader::load(const fs::path& file) {
   std::lock_guard lock(registry_.mutex_);
   std::error_code ec;
-  const fs::path key = fs::weakly_canonical(file, ec);
-  auto it = probed_.find(ec ? file : key);
-  if (it == probed_.end()) {
-    if (!fs::exists(file, ec)) throw Error(fmt::format("plugin {}: no such file", file.string()));
-    it = probed_.emplace(ec ? file : key, tryLoad(file)).first;
-  }
-  if (!it->second.loaded)
-    throw Error(fmt::format("plugin {}: {} (plugin search path: {})", file.string(),
-                            it->second.error, describeSearchPath()));
-  return it->second;
+  if (!probed_.count(keyOf(file)) && !fs::exists(file, ec))
+    throw Error(fmt::format("plugin {}: no such file", file.string()));
+  const PluginInfo& info = settle(file);
+  if (!info.loaded)
+    throw Error(fmt::format("plugin {}: {} (plugin search path: {})", file.string(), info.error,
+                            describeSearchPath()));
+  return info;
 }
 
 bool PluginLoader::loadProviding(FactoryKind kind, const std::string& name) {
   std::lock_guard lock(registry_.mutex_);
-  for (const fs::path& file : candidateFiles()) {
-    std::error_code ec;
-    const fs::path key = fs::weakly_canonical(file, ec);
-    if (probed_.count(ec ? file : key)) continue;
-    const PluginInfo& info = probed_.emplace(ec ? file : key, tryLoad(file)).first->second;
+  const std::vector<fs::path> files = candidateFiles();
+  probeUnseen(files);
+  for (const fs::path& file : files) {
+    const fs::path key = keyOf(file);
+    if (probed_.count(key)) continue;
+    if (const auto it = probes_.find(key); it != probes_.end() && it->second.loaded) {
+      const auto& provides = it->second.provides;
+      // Only the plugin that provides the name is loaded into this process.
+      if (std::find(provides.begin(), provides.end(), std::pair(kind, name)) == provides.end())
+        continue;
+    }
+    const PluginInfo& info = settle(file);
     if (!info.loaded) warn(SourceLocation{file.string()}, info.error);
     if (registry_.contains(kind, name)) return true;
   }
@@ -256,14 +244,10 @@ bool PluginLoader::loadProviding(FactoryKind kind, const std::string& name) {
 
 std::vector<PluginInfo> PluginLoader::loadAll() {
   std::lock_guard lock(registry_.mutex_);
+  const std::vector<fs::path> files = candidateFiles();
+  probeUnseen(files);
   std::vector<PluginInfo> found;
-  for (const fs::path& file : candidateFiles()) {
-    std::error_code ec;
-    const fs::path key = fs::weakly_canonical(file, ec);
-    auto it = probed_.find(ec ? file : key);
-    if (it == probed_.end()) it = probed_.emplace(ec ? file : key, tryLoad(file)).first;
-    found.push_back(it->second);
-  }
+  for (const fs::path& file : files) found.push_back(settle(file));
   return found;
 }
 

@@ -1,0 +1,85 @@
+#include "plugin/plugin_file.hpp"
+
+#include <dlfcn.h>
+
+#include <fmt/format.h>
+
+#include "graspkit/log.hpp"
+#include "graspkit/plugin.hpp"
+
+namespace graspkit::plugin {
+
+void StagingRegistrar::addRobotType(const std::string& name, RobotTypeFactory factory) {
+  staged.push_back({FactoryKind::RobotType, name, std::move(factory), {}, {}, {}});
+}
+void StagingRegistrar::addQualityMeasure(const std::string& name, QualityMeasureFactory factory) {
+  staged.push_back({FactoryKind::QualityMeasure, name, {}, std::move(factory), {}, {}});
+}
+void StagingRegistrar::addSearchEnergy(const std::string& name, SearchEnergyFactory factory) {
+  staged.push_back({FactoryKind::SearchEnergy, name, {}, {}, std::move(factory), {}});
+}
+void StagingRegistrar::addPlanner(const std::string& name, PlannerFactory factory) {
+  staged.push_back({FactoryKind::Planner, name, {}, {}, {}, std::move(factory)});
+}
+
+namespace {
+
+std::string dlErrorText() {
+  const char* text = dlerror();
+  return text ? text : "unknown dlopen error";
+}
+
+}  // namespace
+
+OpenedPlugin openPlugin(const std::filesystem::path& file) {
+  OpenedPlugin opened;
+  PluginInfo& info = opened.info;
+  info.file = file;
+  auto fail = [&](std::string why) {
+    info.error = std::move(why);
+    opened.staging.staged.clear();
+    return std::move(opened);
+  };
+
+  trace(fmt::format("loading plugin {} (its static constructors run now)", file.string()));
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) return fail("cannot load: " + dlErrorText());
+  dlerror();
+  void* symbol = dlsym(handle, GRASPKIT_PLUGIN_SYMBOL);
+  if (!symbol) return fail("not a graspkit plugin: no symbol " GRASPKIT_PLUGIN_SYMBOL);
+  auto entry = reinterpret_cast<graspkit_plugin_entry>(symbol);
+  const graspkit_plugin_descriptor* descriptor = nullptr;
+  try {
+    descriptor = entry();
+  } catch (const std::exception& e) {
+    return fail(fmt::format("{} threw: {}", GRASPKIT_PLUGIN_SYMBOL, e.what()));
+  } catch (...) {
+    return fail(GRASPKIT_PLUGIN_SYMBOL " threw a non-standard exception");
+  }
+  if (!descriptor) return fail(GRASPKIT_PLUGIN_SYMBOL " returned no descriptor");
+  // Only the first two fields are read before both checks pass: they are the ABI's fixed part.
+  if (descriptor->abi_version != GRASPKIT_PLUGIN_ABI_VERSION)
+    return fail(fmt::format("built for plugin ABI {}, this engine loads ABI {}",
+                            descriptor->abi_version, GRASPKIT_PLUGIN_ABI_VERSION));
+  if (descriptor->descriptor_size != sizeof(graspkit_plugin_descriptor))
+    return fail(fmt::format("descriptor size {} bytes, this engine expects {}",
+                            descriptor->descriptor_size, sizeof(graspkit_plugin_descriptor)));
+  if (!descriptor->name || !*descriptor->name) return fail("the descriptor has no plugin name");
+  info.name = descriptor->name;
+  info.version = descriptor->version ? descriptor->version : "";
+  if (!descriptor->register_factories) return fail("the descriptor has no register function");
+
+  trace(fmt::format("calling the register function of plugin '{}' ({})", info.name, file.string()));
+  try {
+    descriptor->register_factories(opened.staging);
+  } catch (const std::exception& e) {
+    return fail(fmt::format("plugin '{}' threw while registering: {}", info.name, e.what()));
+  } catch (...) {
+    return fail(
+        fmt::format("plugin '{}' threw a non-standard exception while registering", info.name));
+  }
+  for (const auto& item : opened.staging.staged) info.provides.emplace_back(item.kind, item.name);
+  return opened;
+}
+
+}  // namespace graspkit::plugin

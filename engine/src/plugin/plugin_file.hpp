@@ -1,0 +1,46 @@
+#pragma once
+// Opening one plugin file (internal to the plugin module): dlopen, the descriptor's checks and the
+// register function run into a staging registrar, so nothing reaches a Registry until the loader
+// has checked it all. The child-process probe and the in-process load open plugins the same way,
+// so a probe reports exactly the error a load would.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "graspkit/plugin_loader.hpp"
+#include "graspkit/registry.hpp"
+
+namespace graspkit::plugin {
+
+// A plugin's factories as its register function added them, to be checked and committed together.
+class StagingRegistrar final : public Registrar {
+ public:
+  struct Staged {
+    FactoryKind kind;
+    std::string name;
+    RobotTypeFactory robotType;
+    QualityMeasureFactory qualityMeasure;
+    SearchEnergyFactory searchEnergy;
+    PlannerFactory planner;
+    bool hasFactory() const { return robotType || qualityMeasure || searchEnergy || planner; }
+  };
+  std::vector<Staged> staged;
+
+  void addRobotType(const std::string& name, RobotTypeFactory factory) override;
+  void addQualityMeasure(const std::string& name, QualityMeasureFactory factory) override;
+  void addSearchEnergy(const std::string& name, SearchEnergyFactory factory) override;
+  void addPlanner(const std::string& name, PlannerFactory factory) override;
+};
+
+struct OpenedPlugin {
+  PluginInfo info;  // file, name, version; error set when the file is no usable plugin
+  StagingRegistrar staging;
+};
+
+// dlopens `file` (never closed: its code may have run) and runs its register function into
+// `staging`. Exceptions from the plugin become info.error; a crash or a hang is the caller's
+// to contain (see probePlugins).
+OpenedPlugin openPlugin(const std::filesystem::path& file);
+
+}  // namespace graspkit::plugin
