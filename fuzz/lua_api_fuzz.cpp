@@ -32,10 +32,23 @@ namespace {
 namespace fs = std::filesystem;
 
 // Open-ended work, kept out (see above).
-const std::set<std::string> kLeftOut = {
-    "autograsp", "approach_to_contact", "open",     "run",       "step",       "best",
-    "finish",    "load_world",          "save",     "add_object", "add_obstacle", "add_robot",
-    "load_plugin", "plugins",           "progress", "planner",   "inverse_kinematics"};
+const std::set<std::string> kLeftOut = {"autograsp",
+                                        "approach_to_contact",
+                                        "open",
+                                        "run",
+                                        "step",
+                                        "best",
+                                        "finish",
+                                        "load_world",
+                                        "save",
+                                        "add_object",
+                                        "add_obstacle",
+                                        "add_robot",
+                                        "load_plugin",
+                                        "plugins",
+                                        "progress",
+                                        "planner",
+                                        "inverse_kinematics"};
 
 // The receivers: the module, then the engine objects the fixture script makes (globals).
 const char* const kReceivers[] = {"graspkit", "world", "robot", "body", "grasp", "pose", "other"};
@@ -101,8 +114,9 @@ Fixture& fixture() {
     Fixture f;
     f.host = std::make_unique<graspkit::lua::ScriptHost>(folder / "fixture.lua", options);
     const std::string world = (models / "worlds" / "gripper_box.xml").string();
-    if (!f.host->runString("base = graspkit.load_world('" + world + "')\nother = base:clone()",
-                           "fixture")
+    if (!f.host
+             ->runString("base = graspkit.load_world('" + world + "')\nother = base:clone()",
+                         "fixture")
              .ok)
       std::abort();
     f.moduleFunctions = moduleFunctions(f.host->state());
@@ -137,8 +151,9 @@ void pushTable(lua_State* L, Input& in, int depth) {
       pushArgument(L, in, depth + 1);
       lua_rawseti(L, -2, i);
     } else {
-      static const char* const kKeys[] = {"limits", "gws", "max_distance", "indent", "chain",
-                                          "speed", "max_steps", "x", "seconds", "steps"};
+      static const char* const kKeys[] = {"limits",  "gws",   "max_distance", "indent",
+                                          "chain",   "speed", "max_steps",    "x",
+                                          "seconds", "steps"};
       pushArgument(L, in, depth + 1);
       lua_setfield(L, -2, kKeys[in.byte() % 10]);
     }
@@ -147,19 +162,30 @@ void pushTable(lua_State* L, Input& in, int depth) {
 
 void pushArgument(lua_State* L, Input& in, int depth) {
   switch (in.byte() % 11) {
-    case 0: lua_pushnil(L); break;
-    case 1: lua_pushboolean(L, in.byte() & 1); break;
-    case 2: lua_pushinteger(L, static_cast<lua_Integer>(static_cast<std::int8_t>(in.byte()))); break;
-    case 3: lua_pushinteger(L, in.raw<lua_Integer>()); break;
-    case 4: lua_pushnumber(L, in.raw<double>()); break;
+    case 0:
+      lua_pushnil(L);
+      break;
+    case 1:
+      lua_pushboolean(L, in.byte() & 1);
+      break;
+    case 2:
+      lua_pushinteger(L, static_cast<lua_Integer>(static_cast<std::int8_t>(in.byte())));
+      break;
+    case 3:
+      lua_pushinteger(L, in.raw<lua_Integer>());
+      break;
+    case 4:
+      lua_pushnumber(L, in.raw<double>());
+      break;
     case 5: {
       const std::string s = in.text(in.byte() % 48);
       lua_pushlstring(L, s.data(), s.size());
       break;
     }
     case 6: {
-      static const char* const kWords[] = {"clamp", "ignore", "error", "L1", "Linf", "epsilon",
-                                           "volume", "box", "floor", "gripper_box_palm"};
+      static const char* const kWords[] = {"clamp", "ignore",          "error",  "L1",
+                                           "Linf",  "epsilon",         "volume", "box",
+                                           "floor", "gripper_box_palm"};
       lua_pushstring(L, kWords[in.byte() % 10]);
       break;
     }
@@ -180,8 +206,12 @@ void pushArgument(lua_State* L, Input& in, int depth) {
       }
       break;
     }
-    case 9: lua_getglobal(L, kReceivers[1 + in.byte() % 6]); break;  // an engine object
-    default: lua_pushcfunction(L, [](lua_State*) { return 0; }); break;
+    case 9:
+      lua_getglobal(L, kReceivers[1 + in.byte() % 6]);
+      break;  // an engine object
+    default:
+      lua_pushcfunction(L, [](lua_State*) { return 0; });
+      break;
   }
 }
 
@@ -192,10 +222,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   lua_State* L = f.host->state();
   const int top = lua_gettop(L);
   // A fresh world per input, so an input's calls reproduce alone.
-  if (!f.host->runString(R"(
+  if (!f.host
+           ->runString(R"(
         world = base:clone(); robot = world:robot(1); body = world:bodies()[1]
         pose = body:pose(); grasp = robot:grasp(world:bodies()[2]))",
-                         "reset")
+                       "reset")
            .ok)
     std::abort();
   Input in(data, size);

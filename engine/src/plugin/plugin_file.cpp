@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <set>
+
 #include <fmt/format.h>
 
 #include "graspkit/log.hpp"
@@ -56,6 +58,19 @@ OpenedPlugin openPlugin(const std::filesystem::path& file) {
   } catch (...) {
     return fail(GRASPKIT_PLUGIN_SYMBOL " threw a non-standard exception");
   }
+  return openDescriptor(file, descriptor);
+}
+
+OpenedPlugin openDescriptor(const std::filesystem::path& file,
+                            const graspkit_plugin_descriptor* descriptor) {
+  OpenedPlugin opened;
+  PluginInfo& info = opened.info;
+  info.file = file;
+  auto fail = [&](std::string why) {
+    info.error = std::move(why);
+    opened.staging.staged.clear();
+    return std::move(opened);
+  };
   if (!descriptor) return fail(GRASPKIT_PLUGIN_SYMBOL " returned no descriptor");
   // Only the first two fields are read before both checks pass: they are the ABI's fixed part.
   if (descriptor->abi_version != GRASPKIT_PLUGIN_ABI_VERSION)
@@ -80,6 +95,57 @@ OpenedPlugin openPlugin(const std::filesystem::path& file) {
   }
   for (const auto& item : opened.staging.staged) info.provides.emplace_back(item.kind, item.name);
   return opened;
+}
+
+PluginInfo commitPlugin(Registry& registry, OpenedPlugin opened,
+                        const std::vector<PluginInfo>& loaded) {
+  PluginInfo& info = opened.info;
+  auto fail = [&](std::string why) {
+    info.error = std::move(why);
+    info.provides.clear();
+    return info;
+  };
+  if (!info.error.empty()) return fail(info.error);
+  info.provides.clear();
+  for (const PluginInfo& other : loaded)
+    if (other.loaded && other.name == info.name)
+      return fail(fmt::format("a plugin named '{}' is already loaded from {}", info.name,
+                              other.file.string()));
+
+  // Check everything before committing anything.
+  std::set<std::pair<FactoryKind, std::string>> names;
+  for (const auto& item : opened.staging.staged) {
+    const char* kind = toString(item.kind);
+    if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
+    if (!item.hasFactory())
+      return fail(fmt::format("registers {} '{}' with no factory", kind, item.name));
+    if (!names.insert({item.kind, item.name}).second)
+      return fail(fmt::format("registers {} '{}' twice", kind, item.name));
+    if (auto owner = registry.provenance(item.kind, item.name))
+      return fail(fmt::format("provides {} '{}', already provided by {}{}", kind, item.name,
+                              owner->describe(),
+                              owner->file.empty() ? "" : " (" + owner->file.string() + ")"));
+  }
+  const Provenance from{info.name, info.version, info.file};
+  for (auto& item : opened.staging.staged) {
+    switch (item.kind) {
+      case FactoryKind::RobotType:
+        registry.addRobotType(item.name, std::move(item.robotType), from);
+        break;
+      case FactoryKind::QualityMeasure:
+        registry.addQualityMeasure(item.name, std::move(item.qualityMeasure), from);
+        break;
+      case FactoryKind::SearchEnergy:
+        registry.addSearchEnergy(item.name, std::move(item.searchEnergy), from);
+        break;
+      case FactoryKind::Planner:
+        registry.addPlanner(item.name, std::move(item.planner), from);
+        break;
+    }
+    info.provides.emplace_back(item.kind, item.name);
+  }
+  info.loaded = true;
+  return info;
 }
 
 }  // namespace graspkit::plugin

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "graspkit/plugin.hpp"
 #include "graspkit/plugin_loader.hpp"
 #include "graspkit/registry.hpp"
 
@@ -38,9 +39,21 @@ struct OpenedPlugin {
   StagingRegistrar staging;
 };
 
-// dlopens `file` (never closed: its code may have run) and runs its register function into
-// `staging`. Exceptions from the plugin become info.error; a crash or a hang is the caller's
-// to contain (see probePlugins).
+// dlopens `file` (never closed: its code may have run), finds its descriptor and opens it as
+// openDescriptor does. Exceptions from the plugin become info.error; a crash or a hang is the
+// caller's to contain (see probePlugins).
 OpenedPlugin openPlugin(const std::filesystem::path& file);
+
+// Checks a descriptor that `file` returned (ABI version and size first, then name and register
+// function) and runs its register function into the staging registrar.
+OpenedPlugin openDescriptor(const std::filesystem::path& file,
+                            const graspkit_plugin_descriptor* descriptor);
+
+// Commits an opened plugin's factories to `registry`, all or none: refused (info.error set,
+// nothing registered) when it failed to open, when a plugin of its name is among `loaded`, or
+// when a staged factory has no name, no function, a name staged twice or a name the registry
+// already has. Returns the plugin's outcome, with `provides` filled when it was committed.
+PluginInfo commitPlugin(Registry& registry, OpenedPlugin opened,
+                        const std::vector<PluginInfo>& loaded);
 
 }  // namespace graspkit::plugin

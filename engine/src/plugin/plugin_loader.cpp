@@ -107,54 +107,10 @@ std::vector<fs::path> PluginLoader::candidateFiles() const {
 }
 
 PluginInfo PluginLoader::tryLoad(const fs::path& file) {
-  plugin::OpenedPlugin opened = plugin::openPlugin(file);
-  PluginInfo& info = opened.info;
-  auto fail = [&](std::string why) {
-    info.error = std::move(why);
-    info.provides.clear();
-    return info;
-  };
-  if (!info.error.empty()) return info;
-  info.provides.clear();
-  for (const auto& [path, other] : probed_)
-    if (other.loaded && other.name == info.name)
-      return fail(fmt::format("a plugin named '{}' is already loaded from {}", info.name,
-                              other.file.string()));
-
-  // Check everything before committing anything.
-  std::set<std::pair<FactoryKind, std::string>> names;
-  for (const auto& item : opened.staging.staged) {
-    const char* kind = toString(item.kind);
-    if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
-    if (!item.hasFactory())
-      return fail(fmt::format("registers {} '{}' with no factory", kind, item.name));
-    if (!names.insert({item.kind, item.name}).second)
-      return fail(fmt::format("registers {} '{}' twice", kind, item.name));
-    if (auto owner = registry_.provenance(item.kind, item.name))
-      return fail(fmt::format("provides {} '{}', already provided by {}{}", kind, item.name,
-                              owner->describe(),
-                              owner->file.empty() ? "" : " (" + owner->file.string() + ")"));
-  }
-  const Provenance from{info.name, info.version, file};
-  for (auto& item : opened.staging.staged) {
-    switch (item.kind) {
-      case FactoryKind::RobotType:
-        registry_.addRobotType(item.name, std::move(item.robotType), from);
-        break;
-      case FactoryKind::QualityMeasure:
-        registry_.addQualityMeasure(item.name, std::move(item.qualityMeasure), from);
-        break;
-      case FactoryKind::SearchEnergy:
-        registry_.addSearchEnergy(item.name, std::move(item.searchEnergy), from);
-        break;
-      case FactoryKind::Planner:
-        registry_.addPlanner(item.name, std::move(item.planner), from);
-        break;
-    }
-    info.provides.emplace_back(item.kind, item.name);
-  }
-  info.loaded = true;
-  return info;
+  std::vector<PluginInfo> loaded;
+  for (const auto& [path, info] : probed_)
+    if (info.loaded) loaded.push_back(info);
+  return plugin::commitPlugin(registry_, plugin::openPlugin(file), loaded);
 }
 
 PluginProbe PluginLoader::probe() const {
