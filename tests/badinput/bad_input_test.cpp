@@ -3,8 +3,10 @@
 // the line and the element where the input is wrong, and says why.
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
+#include "graspkit/log.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -69,10 +72,6 @@ const BadInput kCorpus[] = {
      "found '90 w'"},
     {"FullTransformThreeQuaternionNumbers", "worlds/full_transform_three_numbers.xml",
      "full_transform_three_numbers.xml", 6, "fullTransform", "expected '(w x y z)[x y z]'"},
-    {"EigengraspWrongDimensions", "robots/eigengrasp_wrong_dims.xml", "eigen_wrong_dims.xml", 2,
-     "EigenGrasps", "dimensions is 3, the robot has 2"},
-    {"EigengraspDofIndexOverflow", "robots/eigengrasp_index_overflow.xml",
-     "eigen_index_overflow.xml", 6, "DimVals", "'d4294967296' does not name one of the 2 DOFs"},
     {"SecondRootElement", "worlds/two_roots.xml", "two_roots.xml", 5, "world",
      "content after the root element <world>"},
     {"ScaleOverflow", "bodies/scale_overflow.xml", "scale_overflow.xml", 5, "geometryScaling",
@@ -87,6 +86,8 @@ const std::set<std::string> kSupportFiles = {"robots/good_hand.xml",
                                              "robots/iv/cube.off",
                                              "robots/eigen_wrong_dims.xml",
                                              "robots/eigen_index_overflow.xml",
+                                             "robots/eigengrasp_wrong_dims.xml",
+                                             "robots/eigengrasp_index_overflow.xml",
                                              "bodies/good_cube.xml",
                                              "bodies/cube.off"};
 
@@ -214,6 +215,89 @@ TEST(BadInputGenerated, RobotSizeIsBounded) {
   EXPECT_EQ(robot->jointCount(), kMaxRobotJoints);
 }
 
+// ---------------------------------------------------------------------------------------------
+// What GraspIt! loads with a warning, graspkit loads with a warning (robot.cpp, dof.cpp,
+// eigenGrasp.cpp): each case loads, warns at the right place, and uses what GraspIt! uses.
+
+struct Warnings {
+  std::vector<std::string> texts;
+  WarningHandler previous;
+  Warnings()
+      : previous(setWarningHandler([this](const SourceLocation& where, const std::string& text) {
+          texts.push_back(where.str() + ": " + text);
+        })) {}
+  ~Warnings() { setWarningHandler(previous); }
+  bool has(const std::string& part) const {
+    return std::any_of(texts.begin(), texts.end(),
+                       [&](const std::string& t) { return t.find(part) != std::string::npos; });
+  }
+};
+
+// good_hand.xml with `from` replaced by `to`, written beside a copy of its parts.
+fs::path editedHand(const std::string& name, const std::string& from, const std::string& to) {
+  const fs::path folder = test::scratchDir();
+  fs::copy(corpus() / "robots" / "iv", folder / "iv");
+  std::ifstream in(corpus() / "robots" / "good_hand.xml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  std::ofstream(folder / name) << text;
+  return folder / name;
+}
+
+TEST(GraspItLeniency, ReversedJointLimitsAreSwapped) {
+  const Warnings warnings;
+  const auto hand =
+      loadRobotFile(editedHand("reversed.xml", "<minValue>-90</minValue><maxValue>90</maxValue>",
+                               "<minValue>60</minValue><maxValue>-30</maxValue>"));
+  EXPECT_TRUE(warnings.has("reversed.xml:8: <joint>: minValue 60 is greater than maxValue -30"))
+      << ::testing::PrintToString(warnings.texts);
+  EXPECT_NEAR(hand->dofs[0].min, -30 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(hand->dofs[0].max, 60 * M_PI / 180, 1e-12);
+}
+
+TEST(GraspItLeniency, EigengraspFileOfOtherDimensionsUsesWhatFits) {
+  const Warnings warnings;
+  const auto hand = loadRobotFile(corpus() / "robots" / "eigengrasp_wrong_dims.xml");
+  EXPECT_TRUE(
+      warnings.has("eigen_wrong_dims.xml:2: <EigenGrasps>: dimensions is 3, the robot "
+                   "has 2 DOFs"))
+      << ::testing::PrintToString(warnings.texts);
+  EXPECT_TRUE(warnings.has("eigen_wrong_dims.xml:5: <DimVals>: attribute 'd2' does not name"));
+  EXPECT_FALSE(hand->eigengrasps.identity);
+  ASSERT_EQ(hand->eigengrasps.grasps.size(), 1u);
+  EXPECT_EQ(hand->eigengrasps.grasps[0].direction, Eigen::Vector2d(1, 0));
+}
+
+// d4294967296 is skipped, not wrapped round to d0: the eigengrasp is then all zeros on the
+// robot's DOFs, and with none left the robot gets identity eigengrasps.
+TEST(GraspItLeniency, EigengraspIndexPastTheDofsIsSkippedNotWrapped) {
+  const Warnings warnings;
+  const auto hand = loadRobotFile(corpus() / "robots" / "eigengrasp_index_overflow.xml");
+  EXPECT_TRUE(
+      warnings.has("eigen_index_overflow.xml:6: <DimVals>: attribute 'd4294967296' does "
+                   "not name one of the robot's 2 DOFs"))
+      << ::testing::PrintToString(warnings.texts);
+  EXPECT_TRUE(warnings.has("no eigengrasp fits the robot"));
+  EXPECT_TRUE(hand->eigengrasps.identity);
+}
+
+TEST(GraspItLeniency, MissingEigengraspAndVirtualContactFilesWarn) {
+  const Warnings warnings;
+  const auto hand =
+      loadRobotFile(editedHand("side_files.xml", "</robot>",
+                               "<eigenGrasps>eigen/none.xml</eigenGrasps>\n"
+                               "<virtualContacts>virtual/none.xml</virtualContacts>\n</robot>"));
+  EXPECT_TRUE(warnings.has("side_files.xml:13: <eigenGrasps>"))
+      << ::testing::PrintToString(warnings.texts);
+  EXPECT_TRUE(warnings.has("identity eigengrasps are used"));
+  EXPECT_TRUE(warnings.has("side_files.xml:14: <virtualContacts>"));
+  EXPECT_TRUE(warnings.has("the robot has no virtual contacts"));
+  EXPECT_TRUE(hand->eigengrasps.identity);
+  EXPECT_TRUE(hand->virtualContacts.empty());
+}
+
 TEST(BadInputCorpus, EveryCorpusFileIsTested) {
   std::set<std::string> tested(kSupportFiles);
   for (const BadInput& input : kCorpus) tested.insert(input.path);
@@ -236,7 +320,7 @@ TEST(BadInputCorpus, SupportFilesLoad) {
   EXPECT_EQ(cube->mesh->triangleCount(), 12u);
   EXPECT_EQ(cube->material, Material::Plastic);
   EXPECT_EQ(identityEigengrasps(3).grasps.size(), 3u);
-  EXPECT_NO_THROW(loadEigengraspFile(corpus() / "robots" / "eigen_wrong_dims.xml", 3));
+  EXPECT_EQ(loadEigengraspFile(corpus() / "robots" / "eigen_wrong_dims.xml", 3).grasps.size(), 1u);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/log.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -11,7 +12,9 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-// <DimVals d0=".." d3=".."/>: missing attributes are 0.
+// <DimVals d0=".." d3=".."/>: missing attributes are 0. A d<i> past the robot's DOFs is
+// skipped with a warning (GraspIt! never checks, and reads out of bounds); any other name is an
+// error.
 Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dofs) {
   const auto* dims = xml::child(element, "DimVals");
   if (!dims) throw Error(xml::at(file, element), "missing <DimVals>");
@@ -19,16 +22,20 @@ Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dof
   for (auto* attr = dims->FirstAttribute(); attr; attr = attr->Next()) {
     const std::string_view name = attr->Name();
     // from_chars, not digit arithmetic: d4294967296 must not wrap round to d0.
-    int index = -1;
-    if (name.size() > 1 && name[0] == 'd') {
-      const std::string_view digits = name.substr(1);
-      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-      if (ec != std::errc() || end != digits.data() + digits.size()) index = -1;
-    }
-    if (index < 0 || index >= dofs) {
+    const bool digits_only = name.size() > 1 && name[0] == 'd' &&
+                             name.find_first_not_of("0123456789", 1) == std::string_view::npos;
+    if (!digits_only) {
       throw Error(xml::at(file, *dims),
-                  fmt::format("attribute '{}' does not name one of the {} DOFs (d0..d{})", name,
-                              dofs, dofs - 1));
+                  fmt::format("attribute '{}' is not d<index> (d0..d{})", name, dofs - 1));
+    }
+    int index = -1;
+    const std::string_view digits = name.substr(1);
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (ec != std::errc() || index >= dofs) {
+      warn(xml::at(file, *dims),
+           fmt::format("attribute '{}' does not name one of the robot's {} DOFs (d0..d{}); skipped",
+                       name, dofs, dofs - 1));
+      continue;
     }
     auto value = xml::toDouble(attr->Value());
     if (!value) {
@@ -69,9 +76,10 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
   const XMLElement& root = doc.root();
   const auto dims = xml::intAttribute(file, root, "dimensions");
   if (!dims || *dims != dof_count) {
-    throw Error(xml::at(file, root),
-                fmt::format("dimensions is {}, the robot has {} DOFs",
-                            dims ? std::to_string(*dims) : "missing", dof_count));
+    // GraspIt! reads such a file regardless; what fits the robot is used.
+    warn(xml::at(file, root),
+         fmt::format("dimensions is {}, the robot has {} DOFs; the values for d0..d{} are used",
+                     dims ? std::to_string(*dims) : "missing", dof_count, dof_count - 1));
   }
   EigengraspSet set;
   for (const XMLElement* e : xml::children(root, "EG")) {
@@ -79,7 +87,10 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
     grasp.eigenValue = eigenValue(file, *e);
     grasp.direction = dimVals(file, *e, dof_count);
     const double norm = grasp.direction.norm();
-    if (norm < 1e-12) throw Error(xml::at(file, *e), "eigengrasp is all zeros");
+    if (norm < 1e-12) {
+      warn(xml::at(file, *e), "eigengrasp is all zeros on the robot's DOFs; skipped");
+      continue;
+    }
     grasp.direction /= norm;
     if (const auto* limits = xml::child(*e, "Limits")) {
       auto min = limits->Attribute("min") ? xml::toDouble(limits->Attribute("min")) : std::nullopt;
@@ -92,7 +103,10 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
     }
     set.grasps.push_back(std::move(grasp));
   }
-  if (set.grasps.empty()) throw Error(xml::at(file, root), "no <EG> eigengrasp");
+  if (set.grasps.empty()) {
+    warn(xml::at(file, root), "no eigengrasp fits the robot; identity eigengrasps are used");
+    return identityEigengrasps(dof_count);
+  }
   if (const auto* origin = xml::child(root, "ORIGIN"))
     set.origin = dimVals(file, *origin, dof_count);
   if (const auto* norm = xml::child(root, "NORM")) set.norm = dimVals(file, *norm, dof_count);

@@ -135,7 +135,13 @@ Joint readJoint(const fs::path& file, const XMLElement& element, int dof_count) 
   joint.min = xml::requiredNumber(file, element, "minValue") * scale;
   joint.max = xml::requiredNumber(file, element, "maxValue") * scale;
   if (joint.min > joint.max) {
-    throw Error(xml::at(file, element), "minValue is greater than maxValue");
+    // GraspIt! (DOF::updateMinMax) orders a reversed pair; files in its tree rely on it.
+    warn(xml::at(file, element),
+         fmt::format("minValue {} is greater than maxValue {}; the limits are swapped, as GraspIt! "
+                     "does",
+                     xml::requiredNumber(file, element, "minValue"),
+                     xml::requiredNumber(file, element, "maxValue")));
+    std::swap(joint.min, joint.max);
   }
   joint.viscousFriction = xml::optionalNumber(file, element, "viscousFriction", 0.0);
   joint.coulombFriction = xml::optionalNumber(file, element, "CoulombFriction", 0.0);
@@ -436,15 +442,23 @@ class RobotReader {
     }
     const int dofs = static_cast<int>(robot.dofs.size());
     robot.eigengrasps = identityEigengrasps(dofs);
+    // A side file that cannot be used costs the robot only what it adds, as in GraspIt!
+    // (Robot::loadEigenData and loadContactData warn and go on).
     if (const auto* e = xml::child(root, "eigenGrasps")) {
       robot.eigengraspFile = xml::text(*e);
-      robot.eigengrasps = xml::locatedAt(
-          file_, *e, [&] { return loadEigengraspFile(dir_ / robot.eigengraspFile, dofs); });
+      try {
+        robot.eigengrasps = loadEigengraspFile(dir_ / robot.eigengraspFile, dofs);
+      } catch (const Error& bad) {
+        warn(xml::at(file_, *e), fmt::format("{}; identity eigengrasps are used", bad.what()));
+      }
     }
     if (const auto* e = xml::child(root, "virtualContacts")) {
       robot.virtualContactFile = xml::text(*e);
-      robot.virtualContacts = xml::locatedAt(
-          file_, *e, [&] { return loadVirtualContactFile(dir_ / robot.virtualContactFile); });
+      try {
+        robot.virtualContacts = loadVirtualContactFile(dir_ / robot.virtualContactFile);
+      } catch (const Error& bad) {
+        warn(xml::at(file_, *e), fmt::format("{}; the robot has no virtual contacts", bad.what()));
+      }
     }
     if (const auto* e = xml::child(root, "cyberGlove")) robot.cyberGloveFile = xml::text(*e);
     if (const auto* e = xml::child(root, "flockOfBirds")) {
