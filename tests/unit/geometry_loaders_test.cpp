@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "graspkit/error.hpp"
+#include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "test_paths.hpp"
@@ -163,7 +164,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadOff{"CountNotInteger", "OFF\n8 six 0\n", 2, "face count 'six' is not an integer"},
         BadOff{"NegativeCount", "OFF\n-8 6 0\n", 2, "vertex count -8 is out of range"},
         BadOff{"CountTooLarge", "OFF\n99999999999 6 0\n", 2, "out of range"},
-        BadOff{"NoFaces", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", 2, "0 faces"},
         BadOff{"TooFewCounts", "OFF\n8\n", 2, "found 1 numbers"},
         BadOff{"ShortVertex", "OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 4, "vertex 1 has 2"},
         BadOff{"NaN", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", 4, "non-finite"},
@@ -182,6 +182,33 @@ INSTANTIATE_TEST_SUITE_P(
         BadOff{"HugeCornerCount", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n9223372036854775807 0\n", 6,
                "lists 9223372036854775807"}),
     [](const ::testing::TestParamInfo<BadOff>& info) { return std::string(info.param.name); });
+
+// Geometry with no triangles loads, as in GraspIt! (which says "No triangles found" and goes
+// on): an empty mesh and one warning naming the file, for each format.
+TEST(EmptyGeometry, LoadsEmptyWithAWarning) {
+  const fs::path folder = test::scratchDir();
+  const std::pair<const char*, const char*> files[] = {
+      {"separator.iv", "#Inventor V2.1 ascii\nSeparator { }\n"},
+      {"comments.wrl", "#VRML V1.0 ascii\n# nothing but comments\n"},
+      {"faceset.wrl",
+       "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { coord Coordinate { "
+       "point [ ] } coordIndex [ ] } }\n"},
+      {"nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"}};
+  for (const auto& [name, text] : files) {
+    SCOPED_TRACE(name);
+    std::vector<std::string> warnings;
+    const WarningHandler previous =
+        setWarningHandler([&](const SourceLocation& where, const std::string& message) {
+          warnings.push_back(where.str() + ": " + message);
+        });
+    const TriangleMesh mesh = loadMesh(writeFile(folder, name, text));
+    setWarningHandler(previous);
+    EXPECT_TRUE(mesh.triangles.empty());
+    ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(warnings);
+    EXPECT_NE(warnings[0].find(name), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("holds no triangles"), std::string::npos) << warnings[0];
+  }
+}
 
 TEST(OffParser, HugeDeclaredCountsDoNotAllocateUpFront) {
   // 4e9 vertices would be ~100 GB reserved up front; the parser must fail on the missing lines.
@@ -383,8 +410,6 @@ INSTANTIATE_TEST_SUITE_P(
                  "NoSuchNode"},
         BadScene{"NotInventor", "text.iv", "hello\n", 1, "not an Inventor or VRML file"},
         BadScene{"Binary", "binary.iv", "#Inventor V2.1 binary\n\x01\x02", 1, "binary"},
-        BadScene{"EmptyScene", "empty.iv", "#Inventor V2.1 ascii\nSeparator { }\n", 0,
-                 "no triangles"},
         BadScene{"CoordIndexPastCoordinates", "index.iv",
                  "#Inventor V2.1 ascii\nCoordinate3 { point [ 0 0 0, 1 0 0, 0 1 0 ] }\n"
                  "IndexedFaceSet { coordIndex [ 0 1 2 -1, 0 1 99 -1 ] }\n",

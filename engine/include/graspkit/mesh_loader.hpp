@@ -20,7 +20,8 @@ MeshFormat meshFormatFromExtension(const std::filesystem::path& path);
 bool isMeshFile(const std::filesystem::path& path);
 
 // Loads a geometry file. Throws graspkit::Error naming the file (and line where the parser
-// knows it) for missing, unreadable or malformed files, or files with no triangles.
+// knows it) for missing, unreadable or malformed files. A file with no triangles (an empty
+// Separator, a VRML file of comments) gives an empty mesh with a warning, as GraspIt! loads it.
 TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format = MeshFormat::Auto);
 
 // Parses OFF text already in memory; `file` names it in errors. Exposed for the fuzz target.

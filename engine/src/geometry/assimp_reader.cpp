@@ -103,7 +103,6 @@ TriangleMesh readWithAssimp(const std::filesystem::path& path, MeshFormat format
   }
   TriangleMesh mesh;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) appendMesh(*scene->mMeshes[m], where, mesh);
-  if (mesh.triangles.empty()) throw Error(where, "the file holds no triangles");
   return mesh;
 }
 

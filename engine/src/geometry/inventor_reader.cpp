@@ -564,7 +564,6 @@ TriangleMesh readInventor(const std::filesystem::path& path) {
   }
   const SourceLocation where = locationIn(file);
   if (collector.non_finite) throw Error(where, "a vertex has a non-finite coordinate");
-  if (collector.triangles.empty()) throw Error(where, "the scene holds no triangles");
   // Coin accepted the file; whatever it said along the way is worth a look, not a failure.
   for (const std::string& message : messages) {
     std::string text_only;

@@ -7,6 +7,7 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/log.hpp"
 
 namespace graspkit {
 namespace {
@@ -52,9 +53,9 @@ MeshFormat meshFormatFromExtension(const std::filesystem::path& path) {
   return MeshFormat::Inventor;
 }
 
-TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format) {
-  requireRegularFile(path);
-  if (format == MeshFormat::Auto) format = meshFormatFromExtension(path);
+namespace {
+
+TriangleMesh readMesh(const std::filesystem::path& path, MeshFormat format) {
   switch (format) {
     case MeshFormat::Off:
       return detail::readOff(path);
@@ -67,6 +68,21 @@ TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format) {
       break;
   }
   return detail::readInventor(path);
+}
+
+}  // namespace
+
+TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format) {
+  requireRegularFile(path);
+  if (format == MeshFormat::Auto) format = meshFormatFromExtension(path);
+  TriangleMesh mesh = readMesh(path, format);
+  // GraspIt! loads such a body on purpose (DynamicBody::computeDefaultMassProp says "No
+  // triangles found"): it never collides, its CoG is the origin and its radius 0.
+  if (mesh.triangles.empty())
+    warn(SourceLocation{path.string()},
+         "the geometry holds no triangles: the body never collides or touches, its CoG is the "
+         "origin and its radius 0");
+  return mesh;
 }
 
 }  // namespace graspkit

@@ -1,6 +1,7 @@
 #pragma once
 // The per-format readers behind loadMesh (mesh_loader.cpp). Each takes a path that exists and
-// throws graspkit::Error naming it when the content is unusable or holds no triangles.
+// throws graspkit::Error naming it when the content is unusable; a readable file with no
+// triangles gives an empty mesh (loadMesh warns).
 
 #include <filesystem>
 #include <string>

@@ -162,7 +162,6 @@ class OffParser {
     counts.vertices = parseCount(tokens[0], "vertex");
     counts.faces = parseCount(tokens[1], "face");
     if (tokens.size() == 3) parseCount(tokens[2], "edge");
-    if (counts.faces == 0) fail("the file declares 0 faces, so it has no triangles");
     return counts;
   }
 

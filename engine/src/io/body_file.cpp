@@ -117,10 +117,11 @@ void completeMassProperties(const fs::path& file, BodyModel& body) {
         // GraspIt!'s fallback meant a unit diagonal (it sets elements 0, 3, 6, a slip we do
         // not copy): the body keeps a usable, symmetric inertia.
         body.inertia = Matrix3::Identity();
-        warn(SourceLocation{file.string()},
-             fmt::format("mesh of '{}' is open or degenerate: inertia set to the identity "
-                         "(per unit mass)",
-                         body.name));
+        if (!mesh.triangles.empty())  // an empty mesh was warned about as it loaded
+          warn(SourceLocation{file.string()},
+               fmt::format("mesh of '{}' is open or degenerate: inertia set to the identity "
+                           "(per unit mass)",
+                           body.name));
       }
     }
   }
