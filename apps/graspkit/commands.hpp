@@ -12,6 +12,10 @@
 
 #include "script_flags.hpp"
 
+namespace graspkit {
+class World;
+}
+
 namespace graspkit::cli {
 
 struct InfoOptions {
@@ -30,16 +34,19 @@ struct GraspOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
-  int robot = 0;
-  std::string object;  // body name; the first graspable body when empty
-  std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
-  std::string dofs;    // comma-separated DOF values
+  std::optional<int> robot;  // the world's first hand when unset
+  std::string object;        // body name; the first graspable body when empty
+  std::string pose;          // tx,ty,tz,qw,qx,qy,qz (mm, world)
+  std::string dofs;          // comma-separated DOF values
   bool autograsp = false;
   std::string gws = "L1";
   bool json = false;
 };
 
 void addGraspCommand(CLI::App& app, GraspOptions& options);
+// The robot grasp and plan work on: --robot when given (range-checked), else the world's first
+// hand, as GraspIt! picks its current hand. Throws graspkit::Error when there is none.
+int chooseHand(const World& world, const std::optional<int>& robot);
 int runGrasp(const GraspOptions& options, std::ostream& out);
 
 struct PluginsOptions {
@@ -79,8 +86,8 @@ struct PlanOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
-  int robot = 0;
-  std::string object;  // the first graspable body when empty
+  std::optional<int> robot;  // the world's first hand when unset
+  std::string object;        // the first graspable body when empty
   std::string planner = "simann";
   std::string energy = "contact";
   std::string space = "axis-angle";

@@ -1,5 +1,7 @@
 // graspkit grasp: place a hand, optionally close it, and report its contacts and grasp quality.
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -47,17 +49,33 @@ json vec(const Vector3& v) {
   return json::array({v.x(), v.y(), v.z()});
 }
 
+json contactJson(const World& world, const Contact& c) {
+  return {{"link", bodyName(world, c.body1)},
+          {"body", bodyName(world, c.body2)},
+          {"position", vec(c.position1)},
+          {"normal", vec(c.normal)},
+          {"mu", c.mu}};
+}
+
+// GraspIt!'s grasp counts only the contacts with the object; the hand's others (finger on
+// finger, on an obstacle, on another robot) are reported apart, each saying which it is.
 json graspJson(const World& world, const Grasp& grasp) {
-  json contacts = json::array();
+  json contacts = json::array(), others = json::array();
   for (const Contact& c : grasp.contacts) {
-    contacts.push_back({{"link", bodyName(world, c.body1)},
-                        {"body", bodyName(world, c.body2)},
-                        {"position", vec(c.position1)},
-                        {"normal", vec(c.normal)},
-                        {"mu", c.mu}});
+    if (c.body2 == grasp.object) {
+      contacts.push_back(contactJson(world, c));
+      continue;
+    }
+    json other = contactJson(world, c);
+    const bool self = c.body2.isLink() && c.body2.index == grasp.robot;
+    other["kind"] = self ? "self" : c.body2.isLink() ? "robot" : "body";
+    others.push_back(std::move(other));
   }
   const auto dofs = world.robot(grasp.robot).dofValues();
-  json j = {{"contacts", contacts},
+  json j = {{"robot", world.robot(grasp.robot).name()},
+            {"object", bodyName(world, grasp.object)},
+            {"contacts", contacts},
+            {"other_contacts", others},
             {"dof_values", std::vector<double>(dofs.begin(), dofs.end())},
             {"epsilon", grasp.epsilon},
             {"volume", grasp.volume},
@@ -66,9 +84,8 @@ json graspJson(const World& world, const Grasp& grasp) {
   return j;
 }
 
-void printText(const json& j, std::ostream& out) {
-  out << fmt::format("{} contacts\n", j["contacts"].size());
-  for (const auto& c : j["contacts"]) {
+void printContacts(const json& list, std::ostream& out) {
+  for (const auto& c : list) {
     const auto& p = c["position"];
     const auto& n = c["normal"];
     out << fmt::format(
@@ -76,6 +93,21 @@ void printText(const json& j, std::ostream& out) {
         c["link"].get<std::string>(), c["body"].get<std::string>(), p[0].get<double>(),
         p[1].get<double>(), p[2].get<double>(), n[0].get<double>(), n[1].get<double>(),
         n[2].get<double>(), c["mu"].get<double>());
+  }
+}
+
+void printText(const json& j, std::ostream& out) {
+  out << fmt::format("hand {}, object {}\n", j["robot"].get<std::string>(),
+                     j["object"].get<std::string>());
+  out << fmt::format("{} contacts with the object\n", j["contacts"].size());
+  printContacts(j["contacts"], out);
+  const json& others = j["other_contacts"];
+  if (!others.empty()) {
+    const auto self = std::count_if(others.begin(), others.end(),
+                                    [](const json& c) { return c["kind"] == "self"; });
+    out << fmt::format("{} other contacts ({} between the hand's own links)\n", others.size(),
+                       self);
+    printContacts(others, out);
   }
   out << "dof values:";
   for (const auto& v : j["dof_values"]) out << fmt::format(" {:.6f}", v.get<double>());
@@ -88,12 +120,24 @@ void printText(const json& j, std::ostream& out) {
 
 }  // namespace
 
+int chooseHand(const World& world, const std::optional<int>& robot) {
+  if (robot) {
+    world.robot(*robot);  // range check with a clear message
+    return *robot;
+  }
+  if (const auto hand = world.firstHand()) return *hand;
+  throw Error(world.robotCount() == 0
+                  ? "the world has no robot to grasp with"
+                  : "no robot of the world is a hand; name the one to use with --robot");
+}
+
 void addGraspCommand(CLI::App& app, GraspOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("grasp", "Place a hand, optionally close it, report contacts and quality");
   cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
   addLoadFlags(*cmd, options.roots, options.genericRobots);
-  cmd->add_option("--robot", options.robot, "Which robot is the hand (0-based)")->default_val(0);
+  cmd->add_option("--robot", options.robot,
+                  "Which robot is the hand (0-based; default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--pose", options.pose, "Hand pose in the world: tx,ty,tz,qw,qx,qy,qz (mm)");
   cmd->add_option("--dofs", options.dofs, "DOF values, comma-separated (rad or mm)");
@@ -107,22 +151,22 @@ int runGrasp(const GraspOptions& options, std::ostream& out) {
   World world = loadWorldFile(
       options.world,
       LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
-  world.robot(options.robot);  // range check with a clear message
+  const int robot = chooseHand(world, options.robot);
   const BodyRef object = findObject(world, options.object);
-  if (!options.pose.empty()) world.setRobotPose(options.robot, parsePose(options.pose));
+  if (!options.pose.empty()) world.setRobotPose(robot, parsePose(options.pose));
   if (!options.dofs.empty()) {
-    world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
+    world.setDofValues(robot, parseNumberList(options.dofs, "--dofs"));
   }
   std::vector<Contact> contacts;
   if (options.autograsp) {
-    contacts = autoGrasp(world, options.robot).contacts;
+    contacts = autoGrasp(world, robot).contacts;
   } else {
-    contacts = robotContacts(world, options.robot);
+    contacts = robotContacts(world, robot);
   }
   // Only the contacts with the object make the grasp; others are reported with it too.
   GraspRequest request;
   request.wrenchSpace.type = gws;
-  Grasp grasp = analyzeGrasp(world, options.robot, object, contacts, request);
+  Grasp grasp = analyzeGrasp(world, robot, object, contacts, request);
   const json j = graspJson(world, grasp);
   if (options.json) {
     out << j.dump(2) << "\n";

@@ -220,7 +220,8 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
       "plan", "Plan grasps with a planner plugin and print the best, each closed and measured");
   cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
   addLoadFlags(*cmd, options.roots, options.genericRobots);
-  cmd->add_option("--robot", options.robot, "Which robot is the hand (0-based)")->default_val(0);
+  cmd->add_option("--robot", options.robot,
+                  "Which robot is the hand (0-based; default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--planner", options.planner, "Planner: simann, list, approach or a plugin's")
       ->default_val("simann");
@@ -263,10 +264,9 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
   auto world = std::make_shared<World>(loadWorldFile(
       options.world,
       LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots}));
-  world->robot(options.robot);  // range check with a clear message
   PlanningRequest request;
   request.world = world;
-  request.robot = options.robot;
+  request.robot = chooseHand(*world, options.robot);
   request.object = objectToGrasp(*world, options.object);
   request.position = parsePositionSpace(options.space);
   request.posture = parsePostureSpace(options.posture);

@@ -175,7 +175,11 @@ std::string reasonOf(const std::exception& e) {
 
 int robotOption(lua_State* L, int options, const World& world) {
   const int type = pushOption(L, options, "robot");
-  if (type == LUA_TNIL) return 0;
+  if (type == LUA_TNIL) {  // the world's first hand, as GraspIt! picks its current hand
+    if (const auto hand = world.firstHand()) return *hand;
+    throw ArgumentError(L, options,
+                        "no robot of the world is a hand; name one with option 'robot'");
+  }
   if (type == LUA_TSTRING) {
     const std::string name = lua_tostring(L, -1);
     if (const auto index = world.findRobot(name)) return *index;

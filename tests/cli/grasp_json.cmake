@@ -37,3 +37,41 @@ if(NOT count EQUAL 4 OR NOT closure OR eps LESS 0.002723 OR eps GREATER 0.002778
    OR dof2 LESS 1.4101 OR dof2 GREATER 1.4103)
   message(FATAL_ERROR "force_closure_1: ${count} contacts, closure ${closure}, eps ${eps}, dof2 ${dof2}")
 endif()
+
+# With no --robot, the hand is the world's first robot that is a hand (GraspIt!'s current hand):
+# in barrettGlassDyn the Puma arm comes first and the Barrett closes on the glass, 4 contacts and
+# volume 0.000229 in GraspIt! (graspkit's contacts give 0.0002276, within 1%).
+execute_process(COMMAND ${GRASPKIT} -q grasp ${SHARED_DIR}/graspit-data/worlds/barrettGlassDyn.xml
+                        --autograsp --json
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "barrettGlassDyn grasp failed (${rc}): ${err}")
+endif()
+string(JSON hand GET "${out}" robot)
+string(JSON count LENGTH "${out}" contacts)
+string(JSON volume GET "${out}" volume)
+if(NOT hand STREQUAL "Barrett" OR NOT count EQUAL 4 OR volume LESS 0.0002267 OR
+   volume GREATER 0.0002313)
+  message(FATAL_ERROR "barrettGlassDyn: hand ${hand}, ${count} contacts, volume ${volume}")
+endif()
+
+# Contacts with the object and the hand's others apart: Robonaut closing in robonautFlask touches
+# the flask nowhere and itself 6 times (3 finger pairs, each from both sides), as in GraspIt!.
+execute_process(COMMAND ${GRASPKIT} -q grasp ${SHARED_DIR}/graspit-data/worlds/robonautFlask.xml
+                        --autograsp --json
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "robonautFlask grasp failed (${rc}): ${err}")
+endif()
+string(JSON count LENGTH "${out}" contacts)
+string(JSON others LENGTH "${out}" other_contacts)
+if(NOT count EQUAL 0 OR NOT others EQUAL 6)
+  message(FATAL_ERROR "robonautFlask: ${count} object contacts, ${others} others")
+endif()
+math(EXPR last "${others} - 1")
+foreach(i RANGE ${last})
+  string(JSON kind GET "${out}" other_contacts ${i} kind)
+  if(NOT kind STREQUAL "self")
+    message(FATAL_ERROR "robonautFlask: other contact ${i} is '${kind}', not 'self'")
+  endif()
+endforeach()

@@ -50,6 +50,9 @@ class World {
   const Robot& robot(int index) const;
   const WorldRobot& worldRobot(int index) const;
   std::optional<int> findRobot(const std::string& name) const;
+  // The first robot that is a hand: what GraspIt! makes the current hand when a world loads, and
+  // "the hand" wherever none is named. nullopt when no robot is a hand (an arm alone).
+  std::optional<int> firstHand() const;
 
   const std::vector<Connection>& connections() const { return connections_; }
   const std::optional<Camera>& camera() const { return camera_; }

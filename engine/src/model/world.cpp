@@ -34,6 +34,12 @@ std::optional<int> World::findRobot(const std::string& name) const {
   return std::nullopt;
 }
 
+std::optional<int> World::firstHand() const {
+  for (int i = 0; i < robotCount(); ++i)
+    if (robots_[i].robot.model().isHand) return i;
+  return std::nullopt;
+}
+
 int World::addBody(Body body) {
   if (body.name.empty() && body.model) body.name = body.model->name;
   // GraspIt! names bodies after their files; two copies of one file get a numbered suffix.
