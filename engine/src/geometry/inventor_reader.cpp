@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cctype>
 #include <charconv>
@@ -25,19 +26,24 @@
 
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>
+#include <Inventor/SoPath.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
+#include <Inventor/actions/SoSearchAction.h>
 #include <Inventor/elements/SoNormalBindingElement.h>
 #include <Inventor/elements/SoNormalElement.h>
 #include <Inventor/errors/SoDebugError.h>
 #include <Inventor/errors/SoError.h>
 #include <Inventor/errors/SoReadError.h>
+#include <Inventor/lists/SoPathList.h>
+#include <Inventor/nodes/SoInfo.h>
 #include <Inventor/nodes/SoSeparator.h>
 #include <Inventor/nodes/SoShape.h>
 #include <Inventor/nodes/SoVertexShape.h>
 
 #include "geometry/inventor_shape_check.hpp"
 #include "geometry/mesh_readers.hpp"
+#include "geometry/scene_include.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/log.hpp"
@@ -307,12 +313,18 @@ class SceneTextCheck {
  public:
   SceneTextCheck(std::string_view text, const std::string& file) : text_(text), file_(file) {}
 
-  // The text Coin may read: the file's own, or a copy with file names blanked.
+  // The text Coin may read: the file's own, or a copy with file names blanked and each File node
+  // replaced by a placeholder group (see includes()).
   std::string_view run() {
     checkHeader();
     while (pos_ < text_.size()) step();
+    replaceIncludes();
     return edited_ ? std::string_view(*edited_) : text_;
   }
+
+  // The File nodes found, in order. In the text Coin reads, each is a Group holding one Info node
+  // whose string is the include's marker: the reader puts the included file's nodes there.
+  const std::vector<detail::SceneInclude>& includes() const { return includes_; }
 
  private:
   [[noreturn]] void fail(const std::string& message) const {
@@ -387,16 +399,54 @@ class SceneTextCheck {
     const std::string_view word = text_.substr(start, pos_ - start);
     if (word == "EXTERNPROTO") fail("EXTERNPROTO, which reads other files, is not supported");
     const std::size_t next = nextToken(pos_);
-    if (next < text_.size() && text_[next] == '{') {
+    if (next < text_.size() && text_[next] == '{' && withoutCoinPrefix(word) == "File") {
+      recordInclude(start, next);
+    } else if (next < text_.size() && text_[next] == '{') {
       checkNodeType(word);
     } else if (namesFiles(word)) {
       blankStrings(next);
     }
   }
 
+  // A File node, `File { name "part.iv" }`, from its type word at `start` to its closing brace:
+  // recorded, and skipped (run() replaces it).
+  void recordInclude(std::size_t start, std::size_t brace) {
+    std::size_t at = nextToken(brace + 1);
+    const std::string_view field = text_.substr(at, 4);
+    at = nextToken(at + 4);
+    if (field != "name" || at >= text_.size() || text_[at] != '"')
+      fail("a File node holds one field: name \"file\"");
+    std::string name;
+    for (++at; at < text_.size() && text_[at] != '"'; ++at) {
+      if (text_[at] == '\\' && at + 1 < text_.size()) ++at;
+      name += text_[at];
+    }
+    at = nextToken(at + 1);
+    if (at >= text_.size() || text_[at] != '}') fail("a File node holds one field: name \"file\"");
+    static std::atomic<std::uint64_t> counter{0};
+    includes_.push_back({name, line_, fmt::format("graspkit-include-{}", counter++)});
+    include_spans_.emplace_back(start, at + 1);
+    line_ += static_cast<int>(std::count(text_.begin() + pos_, text_.begin() + at + 1, '\n'));
+    pos_ = at + 1;
+  }
+
+  // Each File node becomes `Group { Info { string "<marker>" } }` and the line breaks it held,
+  // so that Coin's line numbers stay those of the file.
+  void replaceIncludes() {
+    if (includes_.empty()) return;
+    if (!edited_) edited_.emplace(text_);
+    for (std::size_t k = includes_.size(); k-- > 0;) {
+      const auto [begin, end] = include_spans_[k];
+      std::string placeholder =
+          fmt::format("Group {{ Info {{ string \"{}\" }} }}", includes_[k].marker);
+      placeholder.append(std::count(text_.begin() + begin, text_.begin() + end, '\n'), '\n');
+      edited_->replace(begin, end - begin, placeholder);
+    }
+  }
+
   void checkNodeType(std::string_view word) const {
     const std::string_view type = withoutCoinPrefix(word);
-    if (type == "File" || type == "Inline" || type == "WWWInline") {
+    if (type == "Inline" || type == "WWWInline") {
       fail(fmt::format("{} nodes, which read other files, are not supported", word));
     }
     if (!isAllowedNodeType(type)) {
@@ -432,6 +482,8 @@ class SceneTextCheck {
   std::string_view text_;
   const std::string& file_;
   std::optional<std::string> edited_;
+  std::vector<detail::SceneInclude> includes_;
+  std::vector<std::pair<std::size_t, std::size_t>> include_spans_;  // [type word, closing brace]
   std::size_t pos_ = 0;
   int line_ = 1;
   int depth_ = 0;
@@ -548,19 +600,114 @@ void initInventorReader() {
 }
 
 namespace detail {
+namespace {
+
+// An included scene's nodes go where its File node was: into the placeholder group (no separator,
+// as Coin's SoFile adds the file's top-level nodes as its own children, so state carries on).
+void splice(SoSeparator& scene, const std::string& marker, SoSeparator& included) {
+  SoSearchAction search;
+  search.setType(SoInfo::getClassTypeId());
+  search.setInterest(SoSearchAction::ALL);
+  search.setSearchingAll(TRUE);
+  search.apply(&scene);
+  // Collected first: removing a child makes Coin shorten every path through it.
+  std::vector<std::pair<SoGroup*, SoNode*>> places;
+  const SoPathList& paths = search.getPaths();
+  for (int i = 0; i < paths.getLength(); ++i) {
+    const SoPath& path = *paths[i];
+    SoNode* tail = path.getTail();
+    if (path.getLength() < 2 || !tail->isOfType(SoInfo::getClassTypeId())) continue;
+    if (marker != static_cast<SoInfo*>(tail)->string.getValue().getString()) continue;
+    auto* group = static_cast<SoGroup*>(path.getNodeFromTail(1));
+    const bool seen = std::any_of(places.begin(), places.end(),
+                                  [&](const auto& place) { return place.first == group; });
+    if (!seen) places.emplace_back(group, tail);  // once per group, however often it is USEd
+  }
+  for (const auto& [group, info] : places) {
+    group->removeChild(info);
+    for (int c = 0; c < included.getNumChildren(); ++c) group->addChild(included.getChild(c));
+  }
+}
+
+// What the files of one scene share: the model root, the chain of including files (innermost
+// last, resolved), and the text read so far.
+struct SceneFiles {
+  std::filesystem::path root;
+  std::vector<std::filesystem::path> chain;
+  std::size_t bytes = 0;
+};
+
+// Parses `path` and, recursively, the files its File nodes name (see scene_include.hpp). The
+// result carries one reference, which the caller owns.
+SoSeparator* readSceneFile(const std::filesystem::path& path, SceneFiles& files,
+                           std::vector<std::string>& messages) {
+  const std::string file = path.string();
+  const std::string text = readInputFile(path);
+  files.bytes += text.size();
+  if (files.bytes > kMaxIncludedBytes)
+    throw Error(locationIn(file), fmt::format("the scene's files hold more than {} bytes of text "
+                                              "in all",
+                                              kMaxIncludedBytes));
+  SceneTextCheck check(text, file);
+  const std::string_view checked = check.run();
+  SoSeparator* scene = readScene(checked, file, messages);
+  scene->ref();
+  try {
+    for (const SceneInclude& include : check.includes()) {
+      std::vector<std::filesystem::path> folders;
+      folders.push_back(path.parent_path());
+      for (auto outer = files.chain.rbegin(); outer != files.chain.rend(); ++outer)
+        if (std::find(folders.begin(), folders.end(), outer->parent_path()) == folders.end())
+          folders.push_back(outer->parent_path());
+      const auto found = resolveInclude(include.name, folders, files.root, file, include.line);
+      if (!found) {
+        std::string searched;
+        for (const auto& folder : folders)
+          searched += (searched.empty() ? "" : ", ") + folder.string();
+        warn(locationIn(file, include.line),
+             fmt::format("File node names '{}', which is in none of the folders searched ({}); "
+                         "skipped, as Coin does",
+                         include.name, searched));
+        continue;
+      }
+      const std::filesystem::path real = std::filesystem::weakly_canonical(*found);
+      if (std::find(files.chain.begin(), files.chain.end(), real) != files.chain.end())
+        throw Error(locationIn(file, include.line),
+                    fmt::format("File node includes '{}', which includes this file: a cycle",
+                                include.name));
+      if (static_cast<int>(files.chain.size()) > kMaxIncludeDepth)
+        throw Error(locationIn(file, include.line),
+                    fmt::format("File nodes nest deeper than {} files", kMaxIncludeDepth));
+      files.chain.push_back(real);
+      SoSeparator* included = readSceneFile(*found, files, messages);
+      files.chain.pop_back();
+      splice(*scene, include.marker, *included);
+      included->unref();
+    }
+  } catch (...) {
+    scene->unref();
+    throw;
+  }
+  return scene;
+}
+
+}  // namespace
 
 TriangleMesh readInventor(const std::filesystem::path& path) {
   initInventorReader();
   const std::string file = path.string();
-  const std::string text = readInputFile(path);
-  SceneTextCheck check(text, file);
-  const std::string_view checked = check.run();
   std::vector<std::string> messages;
   TriangleCollector collector;
   {
     std::lock_guard lock(coin_mutex);
     CoinMessageCapture capture(messages);
-    collector = collectTriangles(readScene(checked, file, messages), file);
+    SceneFiles files;
+    files.root = std::filesystem::weakly_canonical(std::filesystem::absolute(path)).parent_path();
+    files.chain.push_back(std::filesystem::weakly_canonical(std::filesystem::absolute(path)));
+    SoSeparator* scene = readSceneFile(path, files, messages);
+    const SceneReference hold(scene);
+    scene->unrefNoDelete();  // the hold keeps it alive now
+    collector = collectTriangles(scene, file);
   }
   const SourceLocation where = locationIn(file);
   if (collector.non_finite) throw Error(where, "a vertex has a non-finite coordinate");
