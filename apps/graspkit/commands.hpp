@@ -82,6 +82,19 @@ void addTestCommand(CLI::App& app, TestOptions& options);
 // status 0 when no test failed, 1 when one did or no test was found.
 int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& out);
 
+struct ConvertOptions {
+  std::filesystem::path input;
+  std::filesystem::path out;  // beside the input, .xml, when empty
+  bool force = false;
+  std::string material = "plastic";
+  double mass = 300.0;
+  double scale = 1.0;
+};
+
+void addConvertCommand(CLI::App& app, ConvertOptions& options);
+// Writes the conversion atomically; a target that exists and differs needs --force.
+int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out);
+
 struct PlanOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;

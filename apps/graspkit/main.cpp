@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
   graspkit::cli::addTestCommand(app, test);
   graspkit::cli::PlanOptions plan;
   graspkit::cli::addPlanCommand(app, plan);
+  graspkit::cli::ConvertOptions convert;
+  graspkit::cli::addConvertCommand(app, convert);
 
   try {
     app.parse(argc, argv);
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("test"))
       status = graspkit::cli::runTest(test, quiet, verbose, std::cout);
     if (app.got_subcommand("plan")) status = graspkit::cli::runPlan(plan, quiet, std::cout);
+    if (app.got_subcommand("convert"))
+      status = graspkit::cli::runConvert(convert, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;

@@ -199,6 +199,52 @@ std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
 
 }  // namespace
 
+std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& options) {
+  if (!(options.scale > 0.0) || !std::isfinite(options.scale))
+    throw Error(SourceLocation{mesh_file.string()},
+                fmt::format("the scale must be a positive number, found {}", options.scale));
+  if (!(options.massGrams > 0.0) || !std::isfinite(options.massGrams))
+    throw Error(
+        SourceLocation{mesh_file.string()},
+        fmt::format("the mass must be a positive number of grams, found {}", options.massGrams));
+  BodyModel body;
+  body.name = mesh_file.stem().string();
+  TriangleMesh mesh = loadMesh(mesh_file);
+  for (Vector3& v : mesh.vertices) v *= options.scale;
+  body.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+  completeMassProperties(mesh_file, body);
+  const Vector3& c = body.cog;
+  const Matrix3& i = body.inertia;
+  std::string xml = "<?xml version=\"1.0\" ?>\n<root>\n";
+  xml += fmt::format("  <material>{}</material>\n", materialName(options.material));
+  xml += fmt::format("  <mass>{}</mass>\n", options.massGrams);
+  xml += fmt::format("  <cog>{} {} {}</cog>\n", c.x(), c.y(), c.z());
+  xml += fmt::format("  <inertia_matrix>{} {} {} {} {} {} {} {} {}</inertia_matrix>\n", i(0, 0),
+                     i(0, 1), i(0, 2), i(1, 0), i(1, 1), i(1, 2), i(2, 0), i(2, 1), i(2, 2));
+  const char* type = "Inventor";
+  switch (meshFormatFromExtension(mesh_file)) {
+    case MeshFormat::Off:
+      type = "off";
+      break;
+    case MeshFormat::Ply:
+      type = "ply";
+      break;
+    case MeshFormat::Stl:
+      type = "stl";
+      break;
+    case MeshFormat::Obj:
+      type = "obj";
+      break;
+    default:
+      break;
+  }
+  xml += fmt::format("  <geometryFile type=\"{}\">{}</geometryFile>\n", type,
+                     mesh_file.filename().string());
+  if (options.scale != 1.0)
+    xml += fmt::format("  <geometryScaling>{}</geometryScaling>\n", options.scale);
+  return xml + "</root>\n";
+}
+
 std::shared_ptr<const BodyModel> loadBodyFile(const fs::path& file, ModelCache* cache) {
   auto load = [&]() { return isMeshFile(file) ? readBareGeometry(file) : readBodyXml(file); };
   return cache ? cache->body(file, load) : load();

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "graspkit/body.hpp"
 #include "graspkit/io/model_cache.hpp"
@@ -13,5 +14,19 @@ namespace graspkit {
 // Throws graspkit::Error naming file, line and element for anything the file gets wrong.
 std::shared_ptr<const BodyModel> loadBodyFile(const std::filesystem::path& file,
                                               ModelCache* cache = nullptr);
+
+// What a Body XML written for a bare mesh file says besides the mesh.
+struct BodyXmlOptions {
+  Material material = Material::Plastic;
+  double massGrams = 300.0;  // GraspIt!'s default mass
+  double scale = 1.0;        // <geometryScaling>, > 0
+};
+
+// The Body XML for `mesh_file` (written beside it: the geometry is named by file name): material,
+// mass, the CoG and inertia graspkit computes for the scaled mesh (the surface centroid, and the
+// volume integrals per unit mass, or the identity for an open mesh, as when the tags are
+// absent), the geometry file and its scaling. Numbers are written in their shortest exact form,
+// so loading the XML gives these very values. Throws graspkit::Error naming the mesh file.
+std::string bodyXmlForMesh(const std::filesystem::path& mesh_file, const BodyXmlOptions& options);
 
 }  // namespace graspkit

@@ -1,0 +1,86 @@
+// graspkit convert: GraspIt!'s legacy side files (.egr eigengrasps, .vgr virtual contacts) into
+// their XML forms, and a bare mesh into a Body XML beside it with computed mass properties.
+
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/legacy_files.hpp"
+#include "graspkit/io/output_file.hpp"
+#include "graspkit/material.hpp"
+#include "graspkit/mesh_loader.hpp"
+
+namespace graspkit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowerExtension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string converted(const ConvertOptions& options) {
+  const std::string ext = lowerExtension(options.input);
+  if (ext == ".egr") return eigengraspXmlFromEgr(options.input);
+  if (ext == ".vgr") return virtualContactXmlFromVgr(options.input);
+  if (isMeshFile(options.input)) {
+    BodyXmlOptions body;
+    const auto material = materialFromName(options.material);
+    if (!material)
+      throw Error(
+          fmt::format("--material: '{}' is not one of GraspIt!'s materials", options.material));
+    body.material = *material;
+    body.massGrams = options.mass;
+    body.scale = options.scale;
+    return bodyXmlForMesh(options.input, body);
+  }
+  throw Error(SourceLocation{options.input.string()},
+              "convert reads .egr, .vgr and mesh files (.iv, .wrl, .off, .ply, .stl, .obj); the "
+              "pre-2.1 .cfg and .wld grammars have no public description and are not read");
+}
+
+std::string existingText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+void addConvertCommand(CLI::App& app, ConvertOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "convert",
+      "Turn a legacy .egr or .vgr file into its XML form, or a mesh into a Body XML beside it");
+  cmd->add_option("input", options.input, ".egr, .vgr or mesh file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--out", options.out, "Where to write (default: beside the input, .xml)");
+  cmd->add_flag("--force", options.force, "Replace an existing file that differs");
+  cmd->add_option("--material", options.material, "Mesh: the body's material")
+      ->default_val("plastic");
+  cmd->add_option("--mass", options.mass, "Mesh: the body's mass, g")->default_val(300.0);
+  cmd->add_option("--scale", options.scale, "Mesh: <geometryScaling>")->default_val(1.0);
+}
+
+int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
+  const fs::path target =
+      options.out.empty() ? fs::path(options.input).replace_extension(".xml") : options.out;
+  std::error_code ec;
+  if (fs::equivalent(target, options.input, ec))
+    throw Error(SourceLocation{target.string()}, "the output would replace the input");
+  const std::string text = converted(options);
+  if (fs::exists(target, ec) && !options.force && existingText(target) != text) {
+    throw Error(SourceLocation{target.string()},
+                "the file exists and differs from the conversion; --force replaces it");
+  }
+  writeFileAtomically(target, text);
+  if (!quiet) out << fmt::format("wrote {}\n", target.string());
+  return 0;
+}
+
+}  // namespace graspkit::cli
