@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "graspkit/error.hpp"
@@ -18,6 +19,7 @@
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/log.hpp"
+#include "graspkit/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -296,6 +298,42 @@ TEST(GraspItLeniency, MissingEigengraspAndVirtualContactFilesWarn) {
   EXPECT_TRUE(warnings.has("the robot has no virtual contacts"));
   EXPECT_TRUE(hand->eigengrasps.identity);
   EXPECT_TRUE(hand->virtualContacts.empty());
+}
+
+// A body whose mesh gives no inertia (GraspIt!'s rules: here a centroid 600 mm out) warns only
+// where the inertia is used: as a graspable body, not as an obstacle.
+TEST(GraspItLeniency, InertiaFallbackWarnsOnlyWhereUsed) {
+  const fs::path folder = test::scratchDir();
+  std::string off = "OFF\n8 12 0\n";
+  for (int i = 0; i < 8; ++i)
+    off += fmt::format("{} {} {}\n", 600 + 10 * (i & 1), 10 * ((i >> 1) & 1), 10 * (i >> 2));
+  off +=
+      "3 0 2 3\n3 0 3 1\n3 4 5 7\n3 4 7 6\n3 0 1 5\n3 0 5 4\n"
+      "3 2 6 7\n3 2 7 3\n3 0 4 6\n3 0 6 2\n3 1 3 7\n3 1 7 5\n";
+  std::ofstream(folder / "far.off") << off;
+  std::ofstream(folder / "far.xml")
+      << "<?xml version=\"1.0\" ?>\n<root>\n<material>wood</material>\n"
+         "<geometryFile type=\"off\">far.off</geometryFile>\n</root>\n";
+  for (const char* kind : {"obstacle", "graspableBody"}) {
+    SCOPED_TRACE(kind);
+    std::ofstream(folder / "world.xml")
+        << "<?xml version=\"1.0\" ?>\n<world>\n<" << kind << ">\n<filename>far.xml</filename>\n</"
+        << kind << ">\n</world>\n";
+    const Warnings warnings;
+    LoadOptions options;
+    options.useEnvironment = false;
+    const World world = loadWorldFile(folder / "world.xml", options);
+    EXPECT_TRUE(world.bodies()[0].model->inertiaFallback);
+    EXPECT_EQ(world.bodies()[0].model->inertia, Matrix3::Identity());
+    if (std::string(kind) == "obstacle") {
+      EXPECT_TRUE(warnings.texts.empty()) << ::testing::PrintToString(warnings.texts);
+    } else {
+      ASSERT_EQ(warnings.texts.size(), 1u) << ::testing::PrintToString(warnings.texts);
+      EXPECT_NE(warnings.texts[0].find("world.xml:4: <filename>: the inertia of 'far'"),
+                std::string::npos)
+          << warnings.texts[0];
+    }
+  }
 }
 
 TEST(BadInputCorpus, EveryCorpusFileIsTested) {

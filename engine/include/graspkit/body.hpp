@@ -40,6 +40,10 @@ struct BodyModel {
   bool massFromFile = false;
   bool cogFromFile = false;
   bool inertiaFromFile = false;
+  // The mesh gave no usable inertia (computeMassProperties' rules, GraspIt!'s), so it is the
+  // identity per unit mass. Loaders warn where the value is used: graspable bodies and robot
+  // links, not obstacles, whose mass properties GraspIt! never computes.
+  bool inertiaFallback = false;
 
   bool isElastic() const { return youngs.has_value(); }
 };

@@ -117,11 +117,7 @@ void completeMassProperties(const fs::path& file, BodyModel& body) {
         // GraspIt!'s fallback meant a unit diagonal (it sets elements 0, 3, 6, a slip we do
         // not copy): the body keeps a usable, symmetric inertia.
         body.inertia = Matrix3::Identity();
-        if (!mesh.triangles.empty())  // an empty mesh was warned about as it loaded
-          warn(SourceLocation{file.string()},
-               fmt::format("mesh of '{}' is open or degenerate: inertia set to the identity "
-                           "(per unit mass)",
-                           body.name));
+        body.inertiaFallback = true;
       }
     }
   }
@@ -198,6 +194,13 @@ std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
 }
 
 }  // namespace
+
+void warnIfInertiaFallback(const BodyModel& body, const SourceLocation& where) {
+  if (!body.inertiaFallback || body.inertiaFromFile) return;
+  warn(where, fmt::format("the inertia of '{}' cannot be computed from its mesh (GraspIt! fails "
+                          "too): the identity per unit mass is used; give <inertia_matrix> in {}",
+                          body.name, body.file.filename().string()));
+}
 
 std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& options) {
   if (!(options.scale > 0.0) || !std::isfinite(options.scale))

@@ -279,11 +279,14 @@ class RobotReader {
   std::shared_ptr<const BodyModel> body(const XMLElement& element) {
     const std::string name = xml::text(element);
     if (name.empty()) throw Error(xml::at(file_, element), "empty body file name");
+    std::shared_ptr<const BodyModel> model;
     try {
-      return loadBodyFile(link_dir_ / name, cache_);
+      model = loadBodyFile(link_dir_ / name, cache_);
     } catch (const Error& e) {
       throw Error(xml::at(file_, element), e.what());
     }
+    warnIfInertiaFallback(*model, xml::at(file_, element));
+    return model;
   }
 
   void readPalm(const XMLElement& root, RobotModel& robot) {

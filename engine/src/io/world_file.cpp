@@ -81,6 +81,7 @@ class WorldReader {
     const fs::path path = resolve(filename);
     Body body;
     body.model = xml::locatedAt(file_, filename, [&] { return loadBodyFile(path, cache_); });
+    if (kind == BodyKind::Graspable) warnIfInertiaFallback(*body.model, xml::at(file_, filename));
     body.kind = kind;
     body.filename = xml::text(filename);
     body.setPose(pose(element));
@@ -297,6 +298,7 @@ World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* 
   } else {
     Body body;
     body.model = loadBodyFile(file, cache);
+    warnIfInertiaFallback(*body.model, SourceLocation{file.string()});
     body.kind = BodyKind::Graspable;
     body.filename = file;
     body.setPose(Transform::Identity());

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "graspkit/body.hpp"
+#include "graspkit/error.hpp"
 #include "graspkit/io/model_cache.hpp"
 
 namespace graspkit {
@@ -14,6 +15,10 @@ namespace graspkit {
 // Throws graspkit::Error naming file, line and element for anything the file gets wrong.
 std::shared_ptr<const BodyModel> loadBodyFile(const std::filesystem::path& file,
                                               ModelCache* cache = nullptr);
+
+// Warns at `where` when the body's inertia is the fallback (BodyModel::inertiaFallback): called
+// where the value is used, for graspable bodies and robot links.
+void warnIfInertiaFallback(const BodyModel& body, const SourceLocation& where);
 
 // What a Body XML written for a bare mesh file says besides the mesh.
 struct BodyXmlOptions {
