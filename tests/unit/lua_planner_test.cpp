@@ -322,5 +322,22 @@ TEST_F(LuaPlanner, TimeLimitStopsALongRun) {
   EXPECT_LT(seconds, 5.0);
 }
 
+// With no 'robot' option the hand is the world's first robot that is a hand, as GraspIt! picks
+// its current hand: in barrettGlassDyn the Puma arm comes first and the Barrett is planned.
+TEST_F(LuaPlanner, DefaultRobotIsTheFirstHand) {
+  const std::string glass = (*test::graspitDataDir() / "worlds" / "barrettGlassDyn.xml").string();
+  const lua::ScriptOutcome outcome = host().runString(
+      "local w = graspkit.load_world('" + glass +
+          "')\n"
+          "assert(w:robot(1):name() == 'Puma560', w:robot(1):name())\n"
+              "local seen\n"
+          "local q = graspkit.planner('simann', {world = w, energy = function(state)\n"
+          "  seen = state.robot:name(); return 0 end})\n"
+          "q:step(1)\n"
+          "assert(seen == 'Barrett', tostring(seen))\n",
+      "hand.lua");
+  EXPECT_TRUE(outcome.ok) << outcome.message;
+}
+
 }  // namespace
 }  // namespace graspkit
