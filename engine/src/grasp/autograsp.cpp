@@ -17,7 +17,6 @@ namespace {
 constexpr double kStepScale = 0.01;      // GraspIt!: a step is velocity * speed * 0.01
 constexpr double kContactInstant = 0.1;  // mm: bisection stops once closer than this
 constexpr int kMaxBisections = 40;
-constexpr double kBreakawayLag = 1e-5;
 
 // The hand's links (base first), in worldBodies() order.
 struct HandBodies {

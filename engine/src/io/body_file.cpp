@@ -105,7 +105,7 @@ void readMassProperties(const fs::path& file, const XMLElement& root, BodyModel&
 
 // Fills in what the file left out, as GraspIt! does: the CoG defaults to the area-weighted
 // surface centroid, the inertia to the volume integrals about the volume centroid.
-void completeMassProperties(const fs::path& file, BodyModel& body) {
+void completeMassProperties(BodyModel& body) {
   const TriangleMesh& mesh = *body.mesh;
   if (!body.cogFromFile || !body.inertiaFromFile) {
     const MassProperties props = computeMassProperties(mesh);
@@ -179,7 +179,7 @@ std::shared_ptr<const BodyModel> readBodyXml(const fs::path& file) {
   readMaterial(file, root, *body);
   readMassProperties(file, root, *body);
   readGeometry(file, root, *body);
-  completeMassProperties(file, *body);
+  completeMassProperties(*body);
   return body;
 }
 
@@ -189,7 +189,7 @@ std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
   body->file = file;
   body->geometryFile = file;
   body->mesh = std::make_shared<const TriangleMesh>(loadMesh(file));
-  completeMassProperties(file, *body);
+  completeMassProperties(*body);
   return body;
 }
 
@@ -215,7 +215,7 @@ std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& opti
   TriangleMesh mesh = loadMesh(mesh_file);
   for (Vector3& v : mesh.vertices) v *= options.scale;
   body.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
-  completeMassProperties(mesh_file, body);
+  completeMassProperties(body);
   const Vector3& c = body.cog;
   const Matrix3& i = body.inertia;
   std::string xml = "<?xml version=\"1.0\" ?>\n<root>\n";
