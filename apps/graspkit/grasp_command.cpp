@@ -50,11 +50,17 @@ json vec(const Vector3& v) {
 }
 
 json contactJson(const World& world, const Contact& c) {
-  return {{"link", bodyName(world, c.body1)},
-          {"body", bodyName(world, c.body2)},
-          {"position", vec(c.position1)},
-          {"normal", vec(c.normal)},
-          {"mu", c.mu}};
+  json j = {{"link", bodyName(world, c.body1)},
+            {"body", bodyName(world, c.body2)},
+            {"position", vec(c.position1)},
+            {"normal", vec(c.normal)},
+            {"mu", c.mu},
+            {"model", contactModelName(c.model)}};
+  if (c.model == ContactModel::SoftFinger) {
+    j["torsion"] = c.torsion;
+    j["relative_radii"] = {c.patchRadius1, c.patchRadius2};
+  }
+  return j;
 }
 
 // GraspIt!'s grasp counts only the contacts with the object; the hand's others (finger on
@@ -89,10 +95,12 @@ void printContacts(const json& list, std::ostream& out) {
     const auto& p = c["position"];
     const auto& n = c["normal"];
     out << fmt::format(
-        "  {:<24} {:<12} p [{:.4f} {:.4f} {:.4f}]  n [{:.5f} {:.5f} {:.5f}]  mu {}\n",
+        "  {:<24} {:<12} p [{:.4f} {:.4f} {:.4f}]  n [{:.5f} {:.5f} {:.5f}]  mu {}{}\n",
         c["link"].get<std::string>(), c["body"].get<std::string>(), p[0].get<double>(),
         p[1].get<double>(), p[2].get<double>(), n[0].get<double>(), n[1].get<double>(),
-        n[2].get<double>(), c["mu"].get<double>());
+        n[2].get<double>(), c["mu"].get<double>(),
+        c.contains("torsion") ? fmt::format("  soft, e_tau {:.4f} mm", c["torsion"].get<double>())
+                              : "");
   }
 }
 

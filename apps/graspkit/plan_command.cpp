@@ -74,10 +74,13 @@ json contactJson(const World& world, const Transform& objectPose, const Contact&
   if (contact.body1.kind == BodyRef::Kind::Link && !contact.body1.link.isBase())
     link = {contact.body1.link.chain, contact.body1.link.link};
   (void)world;
-  return {{"link", link},
-          {"point", vectorJson(toObject * contact.position2)},
-          {"normal", vectorJson(-(toObject.linear() * contact.normal))},
-          {"mu", contact.mu}};
+  json j = {{"link", link},
+            {"point", vectorJson(toObject * contact.position2)},
+            {"normal", vectorJson(-(toObject.linear() * contact.normal))},
+            {"mu", contact.mu},
+            {"model", contactModelName(contact.model)}};
+  if (contact.model == ContactModel::SoftFinger) j["torsion"] = contact.torsion;
+  return j;
 }
 
 json graspJson(const World& world, const Transform& objectPose, const PlannedGrasp& g) {

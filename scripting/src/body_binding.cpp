@@ -157,7 +157,7 @@ BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world) {
 }
 
 void pushContact(lua_State* L, const WorldHandle& world, const Contact& contact) {
-  lua_createtable(L, 0, 7);
+  lua_createtable(L, 0, 9);
   pushBody(L, world, contact.body1);
   lua_setfield(L, -2, "body1");
   pushBody(L, world, contact.body2);
@@ -172,6 +172,10 @@ void pushContact(lua_State* L, const WorldHandle& world, const Contact& contact)
   lua_setfield(L, -2, "distance");
   lua_pushnumber(L, contact.mu);
   lua_setfield(L, -2, "mu");
+  lua_pushstring(L, contactModelName(contact.model));
+  lua_setfield(L, -2, "model");
+  lua_pushnumber(L, contact.torsion);
+  lua_setfield(L, -2, "torsion");
 }
 
 void registerBodyClass(lua_State* L) {

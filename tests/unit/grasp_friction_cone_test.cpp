@@ -166,6 +166,7 @@ TEST(Contact, MateSwapsBodiesAndFlipsTheNormal) {
   c.body2 = BodyRef::robotLink(0, LinkRef{1, 2});
   c.patchRadius1 = 5.0;
   c.patchRadius2 = 7.0;
+  c.torsion = 0.8;
   const Contact m = c.mate();
   EXPECT_EQ(m.body1, c.body2);
   EXPECT_EQ(m.body2, c.body1);
@@ -174,8 +175,10 @@ TEST(Contact, MateSwapsBodiesAndFlipsTheNormal) {
   EXPECT_EQ(m.normal, -c.normal);
   expectRightHandedFrame(m.frame, m.normal);
   EXPECT_EQ(m.mu, c.mu);
-  EXPECT_EQ(m.patchRadius1, 7.0);
-  EXPECT_EQ(m.patchRadius2, 5.0);
+  // The relative radii and e_tau belong to the pair, seen from either side.
+  EXPECT_EQ(m.patchRadius1, 5.0);
+  EXPECT_EQ(m.patchRadius2, 7.0);
+  EXPECT_EQ(m.torsion, 0.8);
   EXPECT_EQ(m.mate().normal, c.normal);
 }
 

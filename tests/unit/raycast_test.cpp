@@ -17,9 +17,12 @@
 #include "graspkit/error.hpp"
 #include "graspkit/ray_scene.hpp"
 #include "graspkit/world.hpp"
+#include "test_meshes.hpp"
 
 namespace graspkit {
 namespace {
+
+using test::icosphere;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -28,50 +31,6 @@ constexpr double kFloatTol = 1e-4;  // mm, for scenes of a few hundred mm
 
 // ---------------------------------------------------------------------------------------------
 // Independent references
-
-// An icosphere of radius `radius` about the origin: an icosahedron subdivided `levels` times,
-// every vertex projected onto the sphere, faces wound counter-clockwise seen from outside.
-std::shared_ptr<TriangleMesh> icosphere(double radius, int levels) {
-  auto mesh = std::make_shared<TriangleMesh>();
-  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vector3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
-                            {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
-                            {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<std::array<std::uint32_t, 3>> f = {
-      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (auto& p : v) p.normalize();
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middles;
-    auto middle = [&](std::uint32_t a, std::uint32_t b) {
-      auto key = std::minmax(a, b);
-      auto it = middles.find(key);
-      if (it != middles.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      const auto index = static_cast<std::uint32_t>(v.size() - 1);
-      middles[key] = index;
-      return index;
-    };
-    std::vector<std::array<std::uint32_t, 3>> next;
-    for (const auto& t : f) {
-      const auto ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
-      next.push_back({t[0], ab, ca});
-      next.push_back({t[1], bc, ab});
-      next.push_back({t[2], ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    f = std::move(next);
-  }
-  for (auto& t : f) {
-    // Outward by construction: the face normal points away from the centre.
-    if ((v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).dot(v[t[0]]) < 0) std::swap(t[1], t[2]);
-  }
-  for (auto& p : v) p *= radius;
-  mesh->vertices = std::move(v);
-  mesh->triangles = std::move(f);
-  return mesh;
-}
 
 // The inscribed radius: the distance from the centre (origin) to the nearest face plane.
 double inscribedRadius(const TriangleMesh& mesh) {

@@ -35,8 +35,10 @@ struct Contact {
   double distance = 0.0;  // separation of the two points, mm (below the threshold)
   double mu = 0.0;        // friction coefficient from the two materials
   ContactModel model = ContactModel::PointWithFriction;
-  // Soft fingers: the largest torque about the normal per unit normal force divided by mu,
-  // in mm (GraspIt!'s e_tau); 0 otherwise. Also the patch's relative radii of curvature.
+  // Soft fingers (see contact_patch.hpp): the largest torque about the normal per unit normal
+  // force divided by mu, in mm (GraspIt!'s e_tau), and the relative radii of curvature of the
+  // two surfaces that it came from (mm, kFlatRelativeRadius where the pair is flat). They
+  // belong to the pair, so mate() keeps them. All 0 for other contacts.
   double torsion = 0.0;
   double patchRadius1 = 0.0;
   double patchRadius2 = 0.0;
@@ -44,6 +46,9 @@ struct Contact {
   // The same contact seen from body2: bodies and points swapped, normal negated.
   Contact mate() const;
 };
+
+// "frictionless", "point" or "soft_finger": how reports and scripts name a contact model.
+const char* contactModelName(ContactModel model);
 
 // GraspIt!'s contact frame around a unit normal (columns x, y, z = normal).
 Matrix3 contactFrame(const Vector3& normal);

@@ -1,9 +1,12 @@
 #include "graspkit/contact_search.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "collision/contact_compaction.hpp"
+#include "collision/contact_neighbourhood.hpp"
 #include "collision/triangle_contact.hpp"
+#include "graspkit/contact_patch.hpp"
 #include "graspkit/material.hpp"
 #include "graspkit/world.hpp"
 #include "raycast/embree_mesh.hpp"
@@ -11,6 +14,8 @@
 namespace graspkit {
 namespace {
 
+using collision::Neighbourhood;
+using collision::PatchCandidate;
 using collision::PointPair;
 using collision::RawContact;
 using collision::Triangle;
@@ -80,24 +85,101 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
   return intersecting;
 }
 
+// The normal into the first body. Touching points give no direction; the face of the second
+// body then says where the first is.
+Vector3 normalOf(const RawContact& raw) {
+  const Vector3 gap = raw.onFirst - raw.onSecond;
+  const double distance = gap.norm();
+  return distance > 1e-12 ? Vector3(gap / distance) : raw.intoFirst;
+}
+
+// What the soft-finger patch of a contact gives it: relative radii and e_tau, mm.
+struct SoftPatch {
+  RelativeRadii radii;
+  double torsion = 0.0;
+};
+
+// One body's side of a contact: its surface around the point (body frame) fitted in GraspIt!'s
+// contact frame, which it builds from the normal in the body's own frame. The first principal
+// direction is returned in the world.
+PrincipalRadii fitSide(const Neighbourhood& points, const Vector3& point, const Vector3& inward,
+                       const Transform& pose, Vector3& direction) {
+  const Matrix3 frame = contactFrame(inward);
+  std::vector<Vector3> in_frame;
+  in_frame.reserve(points.size());
+  for (const Vector3& p : points) in_frame.push_back(frame.transpose() * (p - point));
+  const PrincipalRadii radii = principalRadii(fitParaboloid(in_frame));
+  direction = pose.linear() * (frame * radii.direction);
+  return radii;
+}
+
+// GraspIt!'s soft contacts between an elastic body and another: each contact's neighbourhood
+// on both bodies; contacts sharing a patch on the first body merge into the nearest; each
+// survivor's two patches give its relative radii and, under GraspIt!'s static normal force,
+// its e_tau. Removes the merged contacts from `raw` and returns one patch per survivor.
+std::vector<SoftPatch> softPatches(std::vector<RawContact>& raw, const BodyModel& first,
+                                   const Transform& first_pose, const BodyModel& second,
+                                   const Transform& second_pose) {
+  const double youngs = std::max(first.youngs.value_or(-1.0), second.youngs.value_or(-1.0));
+  const double radius = patchNeighbourhoodRadius(youngs);
+  const auto first_surface = raycast::embreeMesh(first.mesh);
+  const auto second_surface = raycast::embreeMesh(second.mesh);
+  const Transform first_inverse = first_pose.inverse();
+  const Transform second_inverse = second_pose.inverse();
+
+  std::vector<PatchCandidate> candidates;
+  candidates.reserve(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const Vector3 normal = normalOf(raw[i]);
+    candidates.push_back(
+        {i, std::sqrt(raw[i].distanceSq()),
+         collision::surfaceNeighbourhood(*first_surface, first_inverse * raw[i].onFirst,
+                                         first_inverse.linear() * normal, radius),
+         collision::surfaceNeighbourhood(*second_surface, second_inverse * raw[i].onSecond,
+                                         -(second_inverse.linear() * normal), radius)});
+  }
+  collision::mergeOverlappingPatches(candidates);
+
+  std::vector<RawContact> survivors;
+  std::vector<SoftPatch> patches;
+  for (const PatchCandidate& candidate : candidates) {
+    const RawContact& r = raw[candidate.contact];
+    const Vector3 normal = normalOf(r);
+    Vector3 direction1, direction2;
+    const PrincipalRadii side1 = fitSide(candidate.onFirst, first_inverse * r.onFirst,
+                                         first_inverse.linear() * normal, first_pose, direction1);
+    const PrincipalRadii side2 =
+        fitSide(candidate.onSecond, second_inverse * r.onSecond,
+                -(second_inverse.linear() * normal), second_pose, direction2);
+    const double angle = std::acos(std::clamp(direction1.dot(direction2), -1.0, 1.0));
+    SoftPatch patch;
+    patch.radii = relativeRadii(side1, side2, angle);
+    patch.torsion = mattressEllipse(patch.radii, youngs, kStaticNormalForce).torsion;
+    survivors.push_back(r);
+    patches.push_back(patch);
+  }
+  raw = std::move(survivors);
+  return patches;
+}
+
 Contact makeContact(const BodyRef& body1, const BodyRef& body2, const RawContact& raw,
-                    const BodyModel& model1, const BodyModel& model2,
-                    const ContactRequest& request) {
+                    const BodyModel& model1, const BodyModel& model2, const SoftPatch* patch) {
   Contact contact;
   contact.body1 = body1;
   contact.body2 = body2;
   contact.position1 = raw.onFirst;
   contact.position2 = raw.onSecond;
-  const Vector3 gap = raw.onFirst - raw.onSecond;
-  contact.distance = gap.norm();
-  // Touching points give no direction; the face of body2 then says where body1 is.
-  contact.normal = contact.distance > 1e-12 ? Vector3(gap / contact.distance) : raw.intoFirst;
+  contact.distance = std::sqrt(raw.distanceSq());
+  contact.normal = normalOf(raw);
   contact.frame = contactFrame(contact.normal);
   contact.mu = staticFriction(model1.material, model2.material);
   if (contact.mu <= 0.0) {
     contact.model = ContactModel::Frictionless;
-  } else if (request.softContacts && (model1.isElastic() || model2.isElastic())) {
+  } else if (patch) {
     contact.model = ContactModel::SoftFinger;
+    contact.torsion = patch->torsion;
+    contact.patchRadius1 = patch->radii.r1 > 0.0 ? patch->radii.r1 : kFlatRelativeRadius;
+    contact.patchRadius2 = patch->radii.r2 > 0.0 ? patch->radii.r2 : kFlatRelativeRadius;
   } else {
     contact.model = ContactModel::PointWithFriction;
   }
@@ -157,9 +239,13 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   }
   collision::removeDuplicates(raw, request.duplicateDistance);
   if (request.compact) collision::compactContacts(raw);
+  std::vector<SoftPatch> patches;
+  if (request.softContacts && (first_model.isElastic() || second_model.isElastic()))
+    patches = softPatches(raw, first_model, first_pose, second_model, second_pose);
   result.contacts.reserve(raw.size());
-  for (const RawContact& r : raw) {
-    Contact c = makeContact(first, second, r, first_model, second_model, request);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const SoftPatch* patch = patches.empty() ? nullptr : &patches[i];
+    Contact c = makeContact(first, second, raw[i], first_model, second_model, patch);
     result.contacts.push_back(flip ? c.mate() : c);
   }
   return result;

@@ -12,9 +12,19 @@ Contact Contact::mate() const {
   m.position2 = position1;
   m.normal = -normal;
   m.frame = contactFrame(m.normal);
-  m.patchRadius1 = patchRadius2;
-  m.patchRadius2 = patchRadius1;
   return m;
+}
+
+const char* contactModelName(ContactModel model) {
+  switch (model) {
+    case ContactModel::Frictionless:
+      return "frictionless";
+    case ContactModel::PointWithFriction:
+      return "point";
+    case ContactModel::SoftFinger:
+      return "soft_finger";
+  }
+  return "unknown";
 }
 
 Matrix3 contactFrame(const Vector3& normal) {
