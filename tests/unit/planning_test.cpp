@@ -691,6 +691,49 @@ class SimAnn : public ::testing::Test {
   std::shared_ptr<const World> world_;
 };
 
+// The contact energy evaluated in full every time: what the search did before it learned to
+// stop summing once the Metropolis test must reject.
+class ContactEnergyInFull final : public SearchEnergy {
+ public:
+  double evaluate(PlanningScene& scene) override { return contact_->evaluate(scene); }
+  bool expensive() const override { return false; }
+
+ private:
+  std::unique_ptr<SearchEnergy> contact_ = Registry::global().makeSearchEnergy("contact");
+};
+
+TEST_F(SimAnn, StoppingTheEnergySumEarlyChangesNothing) {
+  for (std::uint64_t seed : {1u, 7u}) {
+    SCOPED_TRACE(seed);
+    const auto bounded = annealRequest(world_, seed, 1);
+    auto full = bounded;
+    full.customEnergy = [] { return std::make_unique<ContactEnergyInFull>(); };
+    const auto expected = plan(full, 4000);
+    ASSERT_FALSE(expected.empty());
+    expectSameGrasps(plan(bounded, 4000), expected);
+  }
+}
+
+TEST_F(SimAnn, ABoundedContactEnergyIsExactBelowItsBound) {
+  auto request = annealRequest(world_, 1, 1);
+  auto scene = makePlanningScene(request, makeSearchSpace(request));
+  auto energy = Registry::global().makeSearchEnergy("contact");
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 20; ++k) {
+    const std::vector<double> values = {-4 + 8 * unit(random),         -4 + 8 * unit(random),
+                                        -160 + 320 * unit(random),     -160 + 320 * unit(random),
+                                        -100 + 300 * unit(random),     kPi * unit(random),
+                                        -kPi + 2 * kPi * unit(random), kPi * unit(random)};
+    scene->place(values);
+    const double full = energy->evaluate(*scene);
+    EXPECT_EQ(energy->evaluateBelow(*scene, full), full) << k;
+    EXPECT_EQ(energy->evaluateBelow(*scene, 2.0 * full + 1.0), full) << k;
+    // Below the energy: anything above the bound, never below it.
+    EXPECT_GT(energy->evaluateBelow(*scene, 0.25 * full), 0.25 * full) << k;
+  }
+}
+
 TEST_F(SimAnn, SameSeedSameBestListForEachThreadCount) {
   for (int threads : {1, 2}) {
     SCOPED_TRACE(threads);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "graspkit/autograsp.hpp"
@@ -80,15 +81,21 @@ ContactSample sample(const PlanningScene& scene, const PlacedVirtualContact& con
   return s;
 }
 
-double contactEnergy(const PlanningScene& scene, NearestPoints& cache) {
+// The mean over virtual contacts; the sum stops once it exceeds `bound` (every term is >= 0 but
+// for rounding, below 1e-13, which the 1e-9 margin covers), returning the partial mean.
+double contactEnergy(const PlanningScene& scene, NearestPoints& cache,
+                     double bound = std::numeric_limits<double>::infinity()) {
   const auto contacts = scene.virtualContacts();
   if (contacts.empty()) return 0.0;
+  const auto count = static_cast<double>(contacts.size());
+  const double stop = (bound + 1e-9) * count;
   double total = 0.0;
   for (const PlacedVirtualContact& contact : contacts) {
     const ContactSample s = sample(scene, contact, cache);
     total += s.distance + kNormalWeight * (1.0 - s.cosine);
+    if (total > stop) break;
   }
-  return total / static_cast<double>(contacts.size());
+  return total / count;
 }
 
 // GraspIt!'s potentialQualityScalingFunction (3.14 is its constant, not pi).
@@ -126,6 +133,9 @@ double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) 
 class ContactEnergy final : public SearchEnergy {
  public:
   double evaluate(PlanningScene& scene) override { return contactEnergy(scene, cache_); }
+  double evaluateBelow(PlanningScene& scene, double bound) override {
+    return contactEnergy(scene, cache_, bound);
+  }
   bool expensive() const override { return false; }
 
  private:

@@ -1,6 +1,7 @@
 #include "annealing_chain.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace graspkit::simann {
 
@@ -93,14 +94,19 @@ bool AnnealingChain::stepCheckingFirst(double tNeighbour, double tAccept) {
 }
 
 // Evaluate first; only a neighbour the Metropolis test accepts is checked for collisions, and a
-// colliding one is replaced by a new neighbour, as GraspIt! replaces an illegal one.
+// colliding one is replaced by a new neighbour, as GraspIt! replaces an illegal one. The test's
+// random number is drawn before evaluating (nothing else draws in between, so the stream is
+// the same), which tells the energy where it may stop: past the bound it is rejected anyway.
 bool AnnealingChain::stepCheckingLast(double tNeighbour, double tAccept) {
   const double scale = settings_.parameters.energyScale;
   for (int attempt = 0; attempt < kNeighbourTries; ++attempt) {
     std::vector<double> candidate = neighbour(tNeighbour);
     scene_->place(candidate);
-    const double energy = energy_->evaluate(*scene_);
-    if (!(acceptance(scale * current_.energy, scale * energy, tAccept) > uniform())) return true;
+    const double u = uniform();
+    const double bound = scale > 0.0 ? rejectionBound(scale * current_.energy, tAccept, u) / scale
+                                     : std::numeric_limits<double>::infinity();
+    const double energy = energy_->evaluateBelow(*scene_, bound);
+    if (!(acceptance(scale * current_.energy, scale * energy, tAccept) > u)) return true;
     if (scene_->handCollides()) continue;
     moveTo(std::move(candidate), energy);
     return true;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string_view>
 
 namespace graspkit::simann {
@@ -46,6 +47,14 @@ inline double neighbourStep(double t, double u) {
 // The Metropolis probability of moving from energy `from` to `to` at temperature t.
 inline double acceptance(double from, double to, double t) {
   return to < from ? 1.0 : std::exp((from - to) / t);
+}
+
+// The (scaled) energy above which acceptance(from, to, t) <= u for sure: the exponent is kept
+// 1e-9 below log(u), far beyond what rounding in exp can cross. Infinity where no such energy
+// is certain (u = 0, a temperature of 0).
+inline double rejectionBound(double from, double t, double u) {
+  if (!(u > 0.0) || !(t > 0.0)) return std::numeric_limits<double>::infinity();
+  return from - t * (std::log(u) - 1e-9);
 }
 
 }  // namespace graspkit::simann

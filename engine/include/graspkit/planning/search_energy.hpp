@@ -30,6 +30,13 @@ class SearchEnergy {
   // The energy of the scene as it stands (the hand placed, not colliding when
   // rejectsCollisions()). It may move the hand: the caller puts it back.
   virtual double evaluate(PlanningScene& scene) = 0;
+  // The energy as evaluate() gives it, or, once it is certain to exceed `bound`, some value
+  // above `bound`: a search that will reject any energy above the bound need not finish the
+  // sum. The default evaluates in full.
+  virtual double evaluateBelow(PlanningScene& scene, double bound) {
+    (void)bound;
+    return evaluate(scene);
+  }
   // Whether a colliding hand makes a state illegal (GraspIt!'s compliant and dynamic energies
   // do their own checks).
   virtual bool rejectsCollisions() const { return true; }
