@@ -691,27 +691,31 @@ class SimAnn : public ::testing::Test {
   std::shared_ptr<const World> world_;
 };
 
-// The contact energy evaluated in full every time: what the search did before it learned to
+// A registered energy evaluated in full every time: what the search did before it learned to
 // stop summing once the Metropolis test must reject.
-class ContactEnergyInFull final : public SearchEnergy {
+class EnergyInFull final : public SearchEnergy {
  public:
-  double evaluate(PlanningScene& scene) override { return contact_->evaluate(scene); }
+  explicit EnergyInFull(const std::string& name)
+      : energy_(Registry::global().makeSearchEnergy(name)) {}
+  double evaluate(PlanningScene& scene) override { return energy_->evaluate(scene); }
   bool expensive() const override { return false; }
 
  private:
-  std::unique_ptr<SearchEnergy> contact_ = Registry::global().makeSearchEnergy("contact");
+  std::unique_ptr<SearchEnergy> energy_;
 };
 
 TEST_F(SimAnn, StoppingTheEnergySumEarlyChangesNothing) {
-  for (std::uint64_t seed : {1u, 7u}) {
-    SCOPED_TRACE(seed);
-    const auto bounded = annealRequest(world_, seed, 1);
-    auto full = bounded;
-    full.customEnergy = [] { return std::make_unique<ContactEnergyInFull>(); };
-    const auto expected = plan(full, 4000);
-    ASSERT_FALSE(expected.empty());
-    expectSameGrasps(plan(bounded, 4000), expected);
-  }
+  for (const std::string name : {"contact", "guided-potential-quality"})
+    for (std::uint64_t seed : {1u, 7u}) {
+      SCOPED_TRACE(name + " seed " + std::to_string(seed));
+      auto bounded = annealRequest(world_, seed, 1);
+      bounded.energy = name;
+      auto full = bounded;
+      full.customEnergy = [name] { return std::make_unique<EnergyInFull>(name); };
+      const auto expected = plan(full, 4000);
+      ASSERT_FALSE(expected.empty());
+      expectSameGrasps(plan(bounded, 4000), expected);
+    }
 }
 
 TEST_F(SimAnn, ABoundedContactEnergyIsExactBelowItsBound) {

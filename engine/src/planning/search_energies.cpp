@@ -154,8 +154,11 @@ class PotentialQualityEnergy final : public SearchEnergy {
 class GuidedPotentialQualityEnergy final : public SearchEnergy {
  public:
   double evaluate(PlanningScene& scene) override {
+    return evaluateBelow(scene, std::numeric_limits<double>::infinity());
+  }
+  double evaluateBelow(PlanningScene& scene, double bound) override {
     const double quality = potentialQualityEnergy(scene, cache_);
-    return quality <= 0.0 ? quality : contactEnergy(scene, cache_);
+    return quality <= 0.0 ? quality : contactEnergy(scene, cache_, bound);
   }
   bool expensive() const override { return false; }
 
