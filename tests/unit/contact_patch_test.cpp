@@ -11,11 +11,14 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "collision/contact_neighbourhood.hpp"
 #include "graspkit/body.hpp"
 #include "graspkit/contact_search.hpp"
 #include "graspkit/material.hpp"
@@ -188,6 +191,79 @@ TEST(MattressEllipse, NoForceNoPatch) {
 TEST(PatchNeighbourhood, RadiusFromTheModulus) {
   // 0.4 * 1000 * (1 / 1.5e6)^0.333: ln 1.5e6 = 14.22098, times 0.333 = 4.73559, e^- = 8.7773e-3.
   EXPECT_NEAR(patchNeighbourhoodRadius(kRubber), 3.51093, 1e-4);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Merging contacts that share a patch
+
+// GraspIt!'s mergeSoftNeighborhoods, transcribed: scan for the first pair that overlaps, merge,
+// start again.
+std::vector<collision::PatchCandidate> mergedByGraspItsLoop(
+    std::vector<collision::PatchCandidate> list) {
+  auto overlap = [](const collision::Neighbourhood& a, const collision::Neighbourhood& b) {
+    for (const Vector3& p : a)
+      for (const Vector3& q : b)
+        if (p == q) return true;
+    return false;
+  };
+  auto absorb = [](collision::Neighbourhood& into, const collision::Neighbourhood& from) {
+    for (const Vector3& p : from)
+      if (std::find(into.begin(), into.end(), p) == into.end()) into.push_back(p);
+  };
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t i = 0; i < list.size() && !merged; ++i)
+      for (std::size_t j = 0; j < list.size() && !merged; ++j) {
+        if (i == j || !overlap(list[i].onFirst, list[j].onFirst)) continue;
+        const bool keep_i = list[i].distance < list[j].distance - 1e-9;
+        auto& survivor = keep_i ? list[i] : list[j];
+        const auto& gone = keep_i ? list[j] : list[i];
+        absorb(survivor.onFirst, gone.onFirst);
+        absorb(survivor.onSecond, gone.onSecond);
+        list.erase(list.begin() + static_cast<std::ptrdiff_t>(keep_i ? j : i));
+        merged = true;
+      }
+  }
+  return list;
+}
+
+std::set<std::array<double, 3>> asSet(const collision::Neighbourhood& points) {
+  std::set<std::array<double, 3>> out;
+  for (const Vector3& p : points) out.insert({p.x(), p.y(), p.z()});
+  return out;
+}
+
+TEST(MergePatches, SameSurvivorsAndPointsAsGraspItsLoop) {
+  // Random patches over a small grid of points, so that many overlap; distances from a short
+  // list, so that many tie.
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int count = 1 + static_cast<int>(random() % 40);
+    const int grid = 4 + static_cast<int>(random() % 200);
+    std::vector<collision::PatchCandidate> candidates;
+    for (int c = 0; c < count; ++c) {
+      collision::PatchCandidate candidate{
+          static_cast<std::size_t>(c), 0.05 * static_cast<double>(random() % 4), {}, {}};
+      const int size = 1 + static_cast<int>(random() % 6);
+      for (int k = 0; k < size; ++k) {
+        const int g = static_cast<int>(random() % static_cast<unsigned>(grid));
+        const Vector3 p(g % 7, g / 7, 0.5);
+        if (std::find(candidate.onFirst.begin(), candidate.onFirst.end(), p) ==
+            candidate.onFirst.end())
+          candidate.onFirst.push_back(p);
+        candidate.onSecond.push_back(Vector3(c, k, -1.0));
+      }
+      candidates.push_back(candidate);
+    }
+    const auto expected = mergedByGraspItsLoop(candidates);
+    collision::mergeOverlappingPatches(candidates);
+    ASSERT_EQ(candidates.size(), expected.size()) << trial;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      EXPECT_EQ(candidates[i].contact, expected[i].contact) << trial;
+      EXPECT_EQ(asSet(candidates[i].onFirst), asSet(expected[i].onFirst)) << trial;
+      EXPECT_EQ(asSet(candidates[i].onSecond), asSet(expected[i].onSecond)) << trial;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -22,9 +22,6 @@ using Neighbourhood = std::vector<Vector3>;
 Neighbourhood surfaceNeighbourhood(const raycast::EmbreeMesh& mesh, const Vector3& point,
                                    const Vector3& inward, double radius);
 
-// Two neighbourhoods overlap when they share a point exactly (same mesh, same vertex).
-bool neighbourhoodsOverlap(const Neighbourhood& a, const Neighbourhood& b);
-
 // The contacts of one body pair, each with its neighbourhoods on the first and second body.
 struct PatchCandidate {
   std::size_t contact;  // index into the caller's contact list
@@ -34,8 +31,9 @@ struct PatchCandidate {
 };
 
 // GraspIt!'s mergeSoftNeighborhoods: while two contacts' neighbourhoods on the first body
-// overlap, the farther one goes and its points join the nearer one's (on both bodies; a tie,
-// within 1e-9 mm, keeps the later one). The survivors keep their order.
+// overlap (share a point exactly: same mesh, same vertex), the farther one goes and its points
+// join the nearer one's (on both bodies; a tie, within 1e-9 mm, keeps the one GraspIt!'s scan
+// meets second). The survivors keep their order. Quadratic in the number of contacts at worst.
 void mergeOverlappingPatches(std::vector<PatchCandidate>& candidates);
 
 }  // namespace graspkit::collision
