@@ -83,7 +83,10 @@ void PluginLoader::setSearchPath(std::optional<std::vector<fs::path>> folders) {
 
 std::string PluginLoader::describeSearchPath() const {
   std::string text;
-  for (const fs::path& folder : searchPath()) text += (text.empty() ? "" : ":") + folder.string();
+  for (const fs::path& folder : searchPath()) {
+    if (!text.empty()) text += ':';
+    text += folder.string();
+  }
   return text.empty() ? "(empty)" : text;
 }
 
