@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -12,10 +13,13 @@
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"graspkit: a grasp simulator that reads GraspIt! files"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("graspkit ") + graspkit::engineVersion(),
+                       "Print the version and exit");
   app.fallthrough();  // --quiet and --verbose also after the subcommand
   bool quiet = false;
   bool verbose = false;
