@@ -11,11 +11,28 @@ namespace {
 
 using nlohmann::json;
 
-// {"robot_types": [...], "quality_measures": [...]}
+constexpr FactoryKind kKinds[] = {FactoryKind::RobotType, FactoryKind::QualityMeasure,
+                                  FactoryKind::SearchEnergy, FactoryKind::Planner};
+
+const char* jsonKey(FactoryKind kind) {
+  switch (kind) {
+    case FactoryKind::RobotType:
+      return "robot_types";
+    case FactoryKind::QualityMeasure:
+      return "quality_measures";
+    case FactoryKind::SearchEnergy:
+      return "search_energies";
+    case FactoryKind::Planner:
+      return "planners";
+  }
+  return "other";
+}
+
+// {"robot_types": [...], "quality_measures": [...], "search_energies": [...], "planners": [...]}
 json providesJson(const std::vector<std::pair<FactoryKind, std::string>>& provides) {
-  json j = {{"robot_types", json::array()}, {"quality_measures", json::array()}};
-  for (const auto& [kind, name] : provides)
-    j[kind == FactoryKind::RobotType ? "robot_types" : "quality_measures"].push_back(name);
+  json j = json::object();
+  for (FactoryKind kind : kKinds) j[jsonKey(kind)] = json::array();
+  for (const auto& [kind, name] : provides) j[jsonKey(kind)].push_back(name);
   return j;
 }
 
@@ -24,7 +41,7 @@ json pluginsJson(Registry& registry, const std::vector<PluginInfo>& plugins) {
   j["search_path"] = json::array();
   for (const auto& folder : registry.plugins().searchPath()) j["search_path"].push_back(folder);
   std::vector<std::pair<FactoryKind, std::string>> builtin;
-  for (FactoryKind kind : {FactoryKind::RobotType, FactoryKind::QualityMeasure})
+  for (FactoryKind kind : kKinds)
     for (const std::string& name : registry.names(kind))
       if (registry.provenance(kind, name)->plugin.empty()) builtin.emplace_back(kind, name);
   j["builtin"] = providesJson(builtin);
