@@ -16,13 +16,15 @@ void addRunCommand(CLI::App& app, RunOptions& options) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("args", options.args, "Arguments for the script, after --");
-  cmd->add_flag("--json", options.json, "Print the value the script returns as JSON");
+  cmd->add_flag("--json", options.json,
+                "Print the value the script returns as JSON (print() then goes to stderr)");
   addScriptFlags(*cmd, options.flags);
 }
 
 int runRun(const RunOptions& options, bool quiet) {
   lua::ScriptOptions script_options = scriptOptions(options.flags, quiet);
   script_options.args = options.args;
+  script_options.printToStderr = options.json;  // stdout carries the JSON value only
   lua::ScriptHost host(options.script, std::move(script_options));
   std::cout.flush();
   const lua::ScriptOutcome outcome = host.run(options.json ? 1 : 0);

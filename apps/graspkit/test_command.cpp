@@ -157,7 +157,7 @@ int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& 
 
   lua::TestRunOptions run;
   run.script = scriptOptions(options.flags, quiet);
-  run.printToStderr = options.json;
+  run.script.printToStderr = options.json;
   // In text mode on a terminal the result lines themselves show the progress.
   ProgressLine progress(run.script.showProgress && (options.json || isatty(STDOUT_FILENO) == 0));
   int done = 0;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
@@ -21,6 +22,21 @@ namespace fs = std::filesystem;
 
 // The error value os.exit raises: a unique address, so no script value can be mistaken for it.
 char exit_sentinel;
+
+// print() writing to stderr, for --json (stdout carries the result).
+int printToStderr(lua_State* L) {
+  const int count = lua_gettop(L);
+  for (int i = 1; i <= count; ++i) {
+    std::size_t length = 0;
+    const char* text = luaL_tolstring(L, i, &length);
+    if (i > 1) std::fputc('\t', stderr);
+    std::fwrite(text, 1, length, stderr);
+    lua_pop(L, 1);
+  }
+  std::fputc('\n', stderr);
+  std::fflush(stderr);
+  return 0;
+}
 
 int exitScript(lua_State* L) {
   int status = 0;
@@ -150,6 +166,10 @@ ScriptHost::ScriptHost(const fs::path& script, ScriptOptions options)
   } else {
     applySandbox(L_, context_->paths, {context_->scriptFolder});
   }
+  if (context_->options.printToStderr) {
+    lua_pushcfunction(L_, printToStderr);
+    lua_setglobal(L_, "print");
+  }
   lua_getglobal(L_, "os");
   lua_pushcfunction(L_, exitScript);
   lua_setfield(L_, -2, "exit");
@@ -227,9 +247,9 @@ ScriptOutcome ScriptHost::protectedCall(int nargs, int nresults) {
   outcome.message = message != nullptr ? message : "(error object is not a string)";
   lua_pop(L_, 1);
   if (status == LUA_ERRMEM && context_->memory.refused) {
-    outcome.message += fmt::format(
-        " (the script's memory limit is {} MiB; --memory raises it, 0 lifts it)",
-        context_->memory.limit >> 20);
+    outcome.message +=
+        fmt::format(" (the script's memory limit is {} MiB; --memory raises it, 0 lifts it)",
+                    context_->memory.limit >> 20);
   }
   if (timed_out && outcome.message.find("--timeout") == std::string::npos) {
     // The script caught the limit's error, or the limit struck inside a library call.

@@ -46,21 +46,6 @@ int callerLocation(lua_State* L) {
   return 2;
 }
 
-// print() writing to stderr, for --json (stdout carries the report).
-int printToStderr(lua_State* L) {
-  const int count = lua_gettop(L);
-  for (int i = 1; i <= count; ++i) {
-    std::size_t length = 0;
-    const char* text = luaL_tolstring(L, i, &length);
-    if (i > 1) std::fputc('\t', stderr);
-    std::fwrite(text, 1, length, stderr);
-    lua_pop(L, 1);
-  }
-  std::fputc('\n', stderr);
-  std::fflush(stderr);
-  return 0;
-}
-
 std::string readSource(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(SourceLocation{file.string()}, "cannot read the test file");
@@ -103,10 +88,6 @@ class TestFileRun {
  public:
   TestFileRun(const fs::path& file, const TestRunOptions& options)
       : name_(displayName(file)), host_(file, options.script), L_(host_.state()) {
-    if (options.printToStderr) {
-      lua_pushcfunction(L_, printToStderr);
-      lua_setglobal(L_, "print");
-    }
     loadLibrary();
   }
   TestFileRun(const TestFileRun&) = delete;

@@ -1,5 +1,5 @@
 # `graspkit run`: arguments reach `arg`, exit statuses (0, os.exit's, 1 with a located traceback,
-# 124 after --timeout), --json prints the returned value, the sandbox refuses a file outside the
+# 124 after --timeout), --json prints the returned value (print() going to stderr), the sandbox refuses a file outside the
 # script's folder until --allow-read names it, and a relative model path is found beside the
 # script or under --root.
 
@@ -52,9 +52,15 @@ file(WRITE ${dir}/scripts/forever.lua "while true do pcall(function() while true
 run_script(124 --timeout 0.5 ${dir}/scripts/forever.lua)
 expect_in("${err}" "--timeout")
 
-# --json prints what the script returns.
-file(WRITE ${dir}/scripts/returns.lua "return {count = #arg, name = arg[1], values = {1.5, 2}}\n")
+# --json prints what the script returns, and only that: the script's print() goes to stderr.
+file(WRITE ${dir}/scripts/returns.lua
+     "print('working on', arg[1])\nreturn {count = #arg, name = arg[1], values = {1.5, 2}}\n")
 run_script(0 --json ${dir}/scripts/returns.lua -- mug)
+expect_in("${err}" "working on\tmug")
+string(FIND "${out}" "working on" printed)
+if(NOT printed EQUAL -1)
+  message(FATAL_ERROR "--json: the script's print went to stdout:\n${out}")
+endif()
 string(JSON name GET "${out}" name)
 string(JSON second GET "${out}" values 1)
 if(NOT name STREQUAL "mug" OR NOT second EQUAL 2)

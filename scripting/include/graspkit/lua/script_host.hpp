@@ -36,6 +36,8 @@ struct ScriptOptions {
   LoadOptions load;
   std::vector<std::string> args;  // arg[1], arg[2], ...; arg[0] is the script
   bool showProgress = false;      // graspkit.progress() draws on stderr (a terminal)
+  // print() writes to stderr, so that stdout carries only a JSON result (`--json`).
+  bool printToStderr = false;
 };
 
 // How a run ended.

@@ -55,9 +55,9 @@ struct TestReport {
 };
 
 struct TestRunOptions {
-  ScriptOptions script;  // sandbox, time limit (per test and per file chunk), model roots
-  // Send print() to stderr, so a report on stdout stays parseable (--json).
-  bool printToStderr = false;
+  // Sandbox, time limit (per test and per file chunk), model roots, and where print() goes
+  // (script.printToStderr keeps a --json report on stdout parseable).
+  ScriptOptions script;
   // Called before each test runs and after each result (whole-file entries included).
   std::function<void(const std::string& file, const std::string& test)> onStart;
   std::function<void(const std::string& file, const TestResult& result)> onFinish;
