@@ -1,13 +1,16 @@
 // graspkit grasp: place a hand, optionally close it, and report its contacts and grasp quality.
 
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "graspkit/autograsp.hpp"
+#include "graspkit/collision.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/io/world_file.hpp"
@@ -61,6 +64,28 @@ json contactJson(const World& world, const Contact& c) {
     j["relative_radii"] = {c.patchRadius1, c.patchRadius2};
   }
   return j;
+}
+
+// The pairs the hand intersects as placed, before any closing. Intersecting surfaces give no
+// contacts, so a hand that starts inside the object would otherwise just report none: warn.
+json handCollisions(const World& world, int robot) {
+  std::vector<BodyRef> hand;
+  for (const BodyRef& b : worldBodies(world))
+    if (b.isLink() && b.index == robot) hand.push_back(b);
+  json pairs = json::array();
+  for (const CollidingPair& pair : collisionReport(world, {hand, false})) {
+    const bool first_is_hand = pair.first.isLink() && pair.first.index == robot;
+    const BodyRef& link = first_is_hand ? pair.first : pair.second;
+    const BodyRef& other = first_is_hand ? pair.second : pair.first;
+    pairs.push_back({{"link", bodyName(world, link)}, {"body", bodyName(world, other)}});
+  }
+  if (!pairs.empty()) {
+    spdlog::warn(
+        "the hand starts in collision ({} with {}{}): intersecting surfaces give no contacts",
+        pairs[0]["link"].get<std::string>(), pairs[0]["body"].get<std::string>(),
+        pairs.size() > 1 ? fmt::format(", and {} more pairs", pairs.size() - 1) : "");
+  }
+  return pairs;
 }
 
 // GraspIt!'s grasp counts only the contacts with the object; the hand's others (finger on
@@ -117,6 +142,12 @@ void printText(const json& j, std::ostream& out) {
                        self);
     printContacts(others, out);
   }
+  if (j.contains("autograsp"))
+    out << fmt::format("autograsp ended: {} after {} steps\n",
+                       j["autograsp"]["ended"].get<std::string>(),
+                       j["autograsp"]["steps"].get<int>());
+  if (!j["start_collisions"].empty())
+    out << fmt::format("the hand started in collision ({} pairs)\n", j["start_collisions"].size());
   out << "dof values:";
   for (const auto& v : j["dof_values"]) out << fmt::format(" {:.6f}", v.get<double>());
   out << fmt::format("\nepsilon {:.7g}\nvolume {:.7g}\nforce closure {}\n",
@@ -165,9 +196,12 @@ int runGrasp(const GraspOptions& options, std::ostream& out) {
   if (!options.dofs.empty()) {
     world.setDofValues(robot, parseNumberList(options.dofs, "--dofs"));
   }
+  const json start_collisions = handCollisions(world, robot);
   std::vector<Contact> contacts;
+  std::optional<AutoGraspResult> closed;
   if (options.autograsp) {
-    contacts = autoGrasp(world, robot).contacts;
+    closed = autoGrasp(world, robot);
+    contacts = closed->contacts;
   } else {
     contacts = robotContacts(world, robot);
   }
@@ -175,7 +209,10 @@ int runGrasp(const GraspOptions& options, std::ostream& out) {
   GraspRequest request;
   request.wrenchSpace.type = gws;
   Grasp grasp = analyzeGrasp(world, robot, object, contacts, request);
-  const json j = graspJson(world, grasp);
+  json j = graspJson(world, grasp);
+  j["start_collisions"] = start_collisions;
+  if (closed)
+    j["autograsp"] = {{"ended", motionEndName(closed->end)}, {"steps", closed->iterations}};
   if (options.json) {
     out << j.dump(2) << "\n";
   } else {

@@ -199,22 +199,6 @@ int inverseKinematics(lua_State* L) {
   return 1;
 }
 
-const char* endName(MotionEnd end) {
-  switch (end) {
-    case MotionEnd::Settled:
-      return "settled";
-    case MotionEnd::Contact:
-      return "contact";
-    case MotionEnd::IterationLimit:
-      return "iteration_limit";
-    case MotionEnd::InterpolationError:
-      return "interpolation_error";
-    case MotionEnd::NoContact:
-      return "no_contact";
-  }
-  return "?";
-}
-
 void pushContacts(lua_State* L, const WorldHandle& world, const std::vector<Contact>& contacts) {
   lua_createtable(L, static_cast<int>(contacts.size()), 0);
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -232,7 +216,7 @@ void pushMotion(lua_State* L, const WorldHandle& world, const AutoGraspResult& r
   lua_setfield(L, -2, "contacts");
   lua_pushinteger(L, result.iterations);
   lua_setfield(L, -2, "steps");
-  lua_pushstring(L, endName(result.end));
+  lua_pushstring(L, motionEndName(result.end));
   lua_setfield(L, -2, "ended");
 }
 

@@ -75,3 +75,29 @@ foreach(i RANGE ${last})
     message(FATAL_ERROR "robonautFlask: other contact ${i} is '${kind}', not 'self'")
   endif()
 endforeach()
+
+# The report says how the autograsp ended: GraspIt!'s plannerMug closes until every finger has
+# stopped on the mug ("settled"), and as loaded the hand touches nothing it intersects.
+execute_process(COMMAND ${GRASPKIT} -q grasp ${world} --autograsp --json
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+string(JSON ended GET "${out}" autograsp ended)
+string(JSON steps GET "${out}" autograsp steps)
+string(JSON start LENGTH "${out}" start_collisions)
+if(NOT ended STREQUAL "settled" OR steps LESS 1 OR NOT start EQUAL 0)
+  message(FATAL_ERROR "as loaded: autograsp ended '${ended}' after ${steps} steps, "
+                      "${start} start collisions")
+endif()
+
+# A hand placed through the mug (palm at the mug's centre, 105.8 mm up) intersects it: a
+# warning on stderr and the pairs in the JSON, instead of a silent "0 contacts".
+execute_process(COMMAND ${GRASPKIT} grasp ${world} --json --pose 0,0.78,105.8,1,0,0,0
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "grasp with the hand in the mug failed (${rc}): ${err}")
+endif()
+string(JSON start LENGTH "${out}" start_collisions)
+string(JSON body GET "${out}" start_collisions 0 body)
+if(start LESS 1 OR NOT body STREQUAL "mug" OR NOT err MATCHES "starts in collision")
+  message(FATAL_ERROR "hand in the mug: ${start} start collisions (first with '${body}'), "
+                      "stderr: ${err}")
+endif()

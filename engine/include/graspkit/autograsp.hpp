@@ -31,6 +31,10 @@ enum class MotionEnd {
   NoContact,           // approachToContact went its whole distance without touching
 };
 
+// "settled", "contact", "iteration_limit", "interpolation_error" or "no_contact": how reports
+// and scripts name a motion's end.
+const char* motionEndName(MotionEnd end);
+
 struct AutoGraspResult {
   std::vector<double> dofValues;
   std::vector<Contact> contacts;  // seen from the hand's links, after the motion

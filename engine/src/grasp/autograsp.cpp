@@ -405,4 +405,20 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
   return result;
 }
 
+const char* motionEndName(MotionEnd end) {
+  switch (end) {
+    case MotionEnd::Settled:
+      return "settled";
+    case MotionEnd::Contact:
+      return "contact";
+    case MotionEnd::IterationLimit:
+      return "iteration_limit";
+    case MotionEnd::InterpolationError:
+      return "interpolation_error";
+    case MotionEnd::NoContact:
+      return "no_contact";
+  }
+  return "unknown";
+}
+
 }  // namespace graspkit
