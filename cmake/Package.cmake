@@ -17,3 +17,16 @@ install(FILES ${PROJECT_BINARY_DIR}/graspkitConfig.cmake
               ${PROJECT_BINARY_DIR}/graspkitConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/GraspkitPlugin.cmake
         DESTINATION ${GRASPKIT_PACKAGE_DIR})
+
+# pkg-config files for hosts built without CMake: graspkit (the C++ engine) and graspkit-c (the C
+# ABI). The prefix is the one given to `cmake --install --prefix`, read when installing.
+foreach(pc graspkit graspkit-c)
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/pkgconfig/${pc}.pc.in ${PROJECT_BINARY_DIR}/${pc}.pc.in2 @ONLY)
+endforeach()
+install(CODE "
+  foreach(pc graspkit graspkit-c)
+    file(READ \"${PROJECT_BINARY_DIR}/\${pc}.pc.in2\" text)
+    string(REPLACE \"${CMAKE_INSTALL_PREFIX}\" \"\${CMAKE_INSTALL_PREFIX}\" text \"\${text}\")
+    file(WRITE \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig/\${pc}.pc\" \"\${text}\")
+  endforeach()
+")

@@ -1,7 +1,8 @@
 #pragma once
 // Warnings about input that loads but is suspicious (unknown tags, open meshes, fallbacks).
 // They go through one replaceable handler, so a host application or a test can capture them;
-// the default handler prints them through spdlog.
+// the default handler prints them on stderr ("graspkit: warning: ..."), or through the spdlog
+// logger named "graspkit" when the program has registered one. The library never writes to stdout.
 
 #include <functional>
 #include <string>

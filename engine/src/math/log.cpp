@@ -1,5 +1,6 @@
 #include "graspkit/log.hpp"
 
+#include <cstdio>
 #include <mutex>
 
 #include <spdlog/spdlog.h>
@@ -11,6 +12,13 @@ std::mutex handler_mutex;
 WarningHandler& currentHandler() {
   static WarningHandler handler;
   return handler;
+}
+
+// The library never writes to stdout: a host may be printing CSV or JSON there. A program that
+// registers an spdlog logger named "graspkit" (the command-line program does, on stderr, with
+// its -q and -v levels) gets the messages through it; any other host gets them on stderr.
+std::shared_ptr<spdlog::logger> programLogger() {
+  return spdlog::get("graspkit");
 }
 
 }  // namespace
@@ -30,13 +38,17 @@ void warn(const SourceLocation& where, const std::string& message) {
   }
   if (handler) {
     handler(where, message);
+  } else if (auto logger = programLogger()) {
+    logger->warn("{}: {}", where.str(), message);
   } else {
-    spdlog::warn("{}: {}", where.str(), message);
+    const std::string prefix = where.str();
+    std::fprintf(stderr, "graspkit: warning: %s%s%s\n", prefix.c_str(), prefix.empty() ? "" : ": ",
+                 message.c_str());
   }
 }
 
 void trace(const std::string& message) {
-  spdlog::debug("{}", message);
+  if (auto logger = programLogger()) logger->debug("{}", message);
 }
 
 }  // namespace graspkit
