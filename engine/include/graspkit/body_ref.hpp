@@ -4,6 +4,7 @@
 // rays and grasps all speak of bodies through BodyRef, so none of them cares which it is.
 
 #include <compare>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,10 @@ Transform bodyPose(const World& world, const BodyRef& ref);
 // names them; "<child robot>_mount" for mount pieces.
 std::string bodyName(const World& world, const BodyRef& ref);
 bool isValid(const World& world, const BodyRef& ref);
+
+// The solid named `name` (bodyName's names: a body, "<robot>_palm", "<robot>_chain<c>_link<l>",
+// "<child robot>_mount"); nullopt when none has it.
+std::optional<BodyRef> findBodyRef(const World& world, const std::string& name);
 
 // Every body of the world with a mesh, in a stable order: free bodies, then each robot's base
 // and links chain by chain, then mount pieces.

@@ -105,4 +105,14 @@ std::vector<BodyRef> worldBodies(const World& world) {
   return refs;
 }
 
+std::optional<BodyRef> findBodyRef(const World& world, const std::string& name) {
+  // Free bodies first, by their own names (the common case, no string building).
+  const auto& bodies = world.bodies();
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == name) return BodyRef::body(static_cast<int>(i));
+  for (const BodyRef& ref : worldBodies(world))
+    if (ref.kind != BodyRef::Kind::Body && bodyName(world, ref) == name) return ref;
+  return std::nullopt;
+}
+
 }  // namespace graspkit
