@@ -1,5 +1,6 @@
 // Ray and nearest-point queries in batches, over the engine's Embree scene.
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -22,6 +23,31 @@ void fillHit(const BodyRef& body, int triangle, const Vector3& point, const Vect
     out.normal[i] = normal[i];
   }
   out.distance = distance;
+}
+
+void storeHit(void* context, std::size_t index, const RayHit* hit) {
+  graspkit_ray_hit& out = static_cast<graspkit_ray_hit*>(context)[index];
+  if (hit)
+    fillHit(hit->body, hit->triangle, hit->point, hit->normal, hit->distance, out);
+  else
+    out = graspkit_ray_hit{};
+}
+
+// The engine's own checks (RayScene::intersect), made here first over the whole batch.
+void checkRay(const graspkit_ray& r, std::size_t i) {
+  constexpr double kFar = 1e20;  // mm, the engine's limit on coordinates
+  const double o = std::max({std::abs(r.origin[0]), std::abs(r.origin[1]), std::abs(r.origin[2])});
+  const bool finite = std::isfinite(o) && std::isfinite(r.direction[0]) &&
+                      std::isfinite(r.direction[1]) && std::isfinite(r.direction[2]) &&
+                      std::isfinite(r.tmin) && !std::isnan(r.tmax);
+  const bool zero = r.direction[0] == 0 && r.direction[1] == 0 && r.direction[2] == 0;
+  if (!finite || zero || r.tmin < 0 || o > kFar || r.tmin > kFar)
+    throw Error(fmt::format("ray {}: {}", i,
+                            !finite   ? "a value is not a finite number"
+                            : zero    ? "the direction is zero"
+                            : o > kFar ? "the origin is more than 1e20 mm from the world origin"
+                            : r.tmin < 0 ? "tmin is negative"
+                                         : "tmin is more than 1e20 mm"));
 }
 
 const RayScene& sceneOf(const graspkit_ray_scene* scene) {
@@ -57,24 +83,12 @@ graspkit_status graspkit_ray_scene_intersect(const graspkit_ray_scene* scene,
     if (count == 0) return;
     require(rays, "rays");
     require(hits, "hits");
-    // In chunks, so a batch of millions needs no second copy of itself.
-    constexpr std::size_t kChunk = 4096;
-    std::vector<Ray> in(std::min(count, kChunk));
-    std::vector<std::optional<RayHit>> out(in.size());
-    // Check every ray first: a bad one fails the call before any is traced.
-    for (std::size_t i = 0; i < count; ++i) {
-      const graspkit_ray& r = rays[i];
-      const bool finite = std::isfinite(r.origin[0]) && std::isfinite(r.origin[1]) &&
-                          std::isfinite(r.origin[2]) && std::isfinite(r.direction[0]) &&
-                          std::isfinite(r.direction[1]) && std::isfinite(r.direction[2]) &&
-                          std::isfinite(r.tmin) && !std::isnan(r.tmax);
-      const bool zero = r.direction[0] == 0 && r.direction[1] == 0 && r.direction[2] == 0;
-      if (!finite || zero || r.tmin < 0)
-        throw Error(fmt::format("ray {}: {}", i,
-                                !finite ? "a value is not a finite number"
-                                : zero  ? "the direction is zero"
-                                        : "tmin is negative"));
-    }
+    // In chunks, so a batch of millions needs no second copy of itself: each chunk is checked
+    // by the engine, after the whole batch was checked here (a bad ray fails the call before any
+    // is traced), and each answer goes straight into the caller's array.
+    for (std::size_t i = 0; i < count; ++i) checkRay(rays[i], i);
+    constexpr std::size_t kChunk = 256;  // in the L1/L2 cache
+    Ray in[kChunk];
     for (std::size_t start = 0; start < count; start += kChunk) {
       const std::size_t n = std::min(kChunk, count - start);
       for (std::size_t i = 0; i < n; ++i) {
@@ -84,17 +98,7 @@ graspkit_status graspkit_ray_scene_intersect(const graspkit_ray_scene* scene,
         in[i].tmin = r.tmin;
         in[i].tmax = r.tmax;
       }
-      s.intersect(std::span<const Ray>(in.data(), n),
-                  std::span<std::optional<RayHit>>(out.data(), n));
-      for (std::size_t i = 0; i < n; ++i) {
-        graspkit_ray_hit& h = hits[start + i];
-        if (!out[i]) {
-          h = graspkit_ray_hit{};
-          continue;
-        }
-        fillHit(out[i]->body, out[i]->triangle, out[i]->point, out[i]->normal,
-                out[i]->distance, h);
-      }
+      s.intersect(std::span<const Ray>(in, n), &storeHit, hits + start);
     }
   });
 }

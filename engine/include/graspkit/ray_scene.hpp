@@ -80,6 +80,13 @@ class RayScene {
   // The same for many rays at once (Embree packets of 8); hits[i] answers rays[i]. Throws
   // graspkit::Error, before tracing any ray, when the sizes differ or a ray is bad as above.
   void intersect(std::span<const Ray> rays, std::span<std::optional<RayHit>> hits) const;
+  // The same, handing the answer to rays[i] to sink(context, i, hit) (hit null for a miss)
+  // instead of storing it: for callers that keep hits in a layout of their own (the C ABI). The
+  // sink is called in order of i, from the calling thread; `hit` lives for the call only. Each
+  // ray is checked as it is traced: a bad one throws after the rays before it were answered
+  // (check the batch first where that matters, as the C ABI does).
+  using HitSink = void (*)(void* context, std::size_t index, const RayHit* hit);
+  void intersect(std::span<const Ray> rays, HitSink sink, void* context) const;
 
   // The nearest surface point of the scene's bodies (of `only`, when not empty) within
   // `maxDistance` mm of `point`; nullopt when none is that close. A small maxDistance makes the
@@ -94,6 +101,9 @@ class RayScene {
       double maxDistance = std::numeric_limits<double>::infinity()) const;
 
  private:
+  template <class Sink>
+  void intersectChecked(std::span<const Ray> rays, Sink&& sink) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
