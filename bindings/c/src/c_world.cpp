@@ -63,9 +63,8 @@ graspkit_status graspkit_world_load(const char* path, const graspkit_load_option
                                     graspkit_world** world) {
   return guarded([&] {
     require(world, "world");
-    auto loaded =
-        std::make_unique<graspkit_world>(loadAnyFile(require(path, "path"), loadOptions(options)));
-    *world = loaded.release();
+    World loaded = loadAnyFile(require(path, "path"), loadOptions(options));
+    *world = new graspkit_world{std::move(loaded)};
   });
 }
 
