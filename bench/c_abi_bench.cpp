@@ -2,8 +2,9 @@
 // ABI, the mug alone in the scene), cast through graspkit_ray_scene_intersect and, as the
 // baseline in the same run, through the C++ RayScene::intersect on the same world and rays.
 // Counter `x_cpp`: the C++ call's time divided by the C ABI's, both in every iteration (1 is
-// parity; 0.95 means the binding costs 5 %). Rays: from random points on a sphere of radius 200 mm about the mug
-// towards random points of its bounding box (raycast_bench's set). One thread, CPU time.
+// parity; 0.95 means the binding costs 5 %). Rays: from random points on a sphere of radius 200 mm
+// about the mug towards random points of its bounding box (raycast_bench's set). One thread, CPU
+// time.
 
 #include <benchmark/benchmark.h>
 
@@ -67,8 +68,10 @@ Fixture& fixture() {
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> unit;
     for (std::size_t i = 0; i < kRays; ++i) {
-      const Vector3 from = box.center() + 200.0 * Vector3(normal(rng), normal(rng), normal(rng)).normalized();
-      const Vector3 to = box.min() + Vector3(unit(rng), unit(rng), unit(rng)).cwiseProduct(box.sizes());
+      const Vector3 from =
+          box.center() + 200.0 * Vector3(normal(rng), normal(rng), normal(rng)).normalized();
+      const Vector3 to =
+          box.min() + Vector3(unit(rng), unit(rng), unit(rng)).cwiseProduct(box.sizes());
       Ray r;
       r.origin = from;
       r.direction = to - from;

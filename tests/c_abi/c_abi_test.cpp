@@ -158,9 +158,10 @@ TEST(CAbi, MissingFileNamesTheFile) {
 
 TEST(CAbi, MalformedXmlGivesFileLineAndElement) {
   const fs::path dir = scratchDir();
-  const std::string path = writeFile(dir / "bad.xml",
-                                     "<?xml version=\"1.0\" ?>\n<root>\n  <material>glass</material>\n"
-                                     "  <mass>heavy</mass>\n</root>\n");
+  const std::string path =
+      writeFile(dir / "bad.xml",
+                "<?xml version=\"1.0\" ?>\n<root>\n  <material>glass</material>\n"
+                "  <mass>heavy</mass>\n</root>\n");
   WorldPtr world;
   EXPECT_EQ(graspkit_world_load(path.c_str(), nullptr, &world.w), GRASPKIT_ERROR_INPUT);
   EXPECT_NE(std::string(graspkit_last_error_file()).find("bad.xml"), std::string::npos);
@@ -210,13 +211,15 @@ void capture(graspkit_log_level level, const char* file, int line, const char* e
 
 TEST(CAbi, WarningsReachTheCallbackAndNeverStdout) {
   const fs::path dir = scratchDir();
-  std::ofstream(dir / "cube.off") << "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n"
-                                     "1 1 1\n0 1 1\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n"
-                                     "3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
-  const std::string path = writeFile(dir / "odd.xml",
-                                     "<?xml version=\"1.0\" ?>\n<root>\n  <material>wood</material>\n"
-                                     "  <colour>red</colour>\n"
-                                     "  <geometryFile type=\"off\">cube.off</geometryFile>\n</root>\n");
+  std::ofstream(dir / "cube.off")
+      << "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n"
+         "1 1 1\n0 1 1\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n"
+         "3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+  const std::string path =
+      writeFile(dir / "odd.xml",
+                "<?xml version=\"1.0\" ?>\n<root>\n  <material>wood</material>\n"
+                "  <colour>red</colour>\n"
+                "  <geometryFile type=\"off\">cube.off</geometryFile>\n</root>\n");
   Captured captured;
   ASSERT_EQ(graspkit_set_log_callback(&capture, &captured), GRASPKIT_OK);
   {
@@ -268,8 +271,7 @@ TEST(CAbi, BodiesOfTheProjectBox) {
   EXPECT_EQ(graspkit_body_name(world, 0, nullptr, 0, &length), GRASPKIT_ERROR_BUFFER_TOO_SMALL);
   EXPECT_EQ(length, 3u);
   EXPECT_EQ(graspkit_body_name(world, 1, name, sizeof name, &length), GRASPKIT_ERROR_OUT_OF_RANGE);
-  EXPECT_EQ(graspkit_body_name(world, -1, name, sizeof name, &length),
-            GRASPKIT_ERROR_OUT_OF_RANGE);
+  EXPECT_EQ(graspkit_body_name(world, -1, name, sizeof name, &length), GRASPKIT_ERROR_OUT_OF_RANGE);
 
   int graspable = -1;
   ASSERT_EQ(graspkit_body_is_graspable(world, 0, &graspable), GRASPKIT_OK);
@@ -660,7 +662,8 @@ TEST_F(CAbiPlannerMug, PlannedGraspsRankAndReproduce) {
   ASSERT_GT(count, 0u);
   EXPECT_LE(count, 5u);
   std::vector<graspkit_planned_grasp> grasps(count);
-  for (size_t i = 0; i < count; ++i) ASSERT_EQ(graspkit_plan_grasp(plan, i, &grasps[i]), GRASPKIT_OK);
+  for (size_t i = 0; i < count; ++i)
+    ASSERT_EQ(graspkit_plan_grasp(plan, i, &grasps[i]), GRASPKIT_OK);
   for (size_t i = 1; i < count; ++i) EXPECT_TRUE(ranksBefore(grasps[i - 1], grasps[i])) << i;
 
   // The world of grasp 0, measured again, gives what the plan measured.
@@ -672,7 +675,8 @@ TEST_F(CAbiPlannerMug, PlannedGraspsRankAndReproduce) {
   EXPECT_EQ(dofs, world_dofs);
   graspkit_pose pose{};
   graspkit_robot_get_pose(closed, 0, &pose);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(pose.translation[i], grasps[0].closed.translation[i], 1e-9);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(pose.translation[i], grasps[0].closed.translation[i], 1e-9);
   graspkit_grasp* grasp = nullptr;
   ASSERT_EQ(graspkit_grasp_analyze(closed, 0, 0, GRASPKIT_GWS_L1, &grasp), GRASPKIT_OK);
   graspkit_quality quality{};
@@ -722,9 +726,10 @@ TEST(CAbi, LuaScenarios) {
 
   // The module is there: a world built in the script, its body counted.
   const std::string box = (modelsDir() / "objects/box.xml").string();
-  const std::string counts = writeFile(
-      dir / "counts.lua",
-      "local w = graspkit.new_world()\nw:add_object(arg[1])\nos.exit(#w:bodies() == 1 and 0 or 9)\n");
+  const std::string counts =
+      writeFile(dir / "counts.lua",
+                "local w = graspkit.new_world()\nw:add_object(arg[1])\nos.exit(#w:bodies() == 1 "
+                "and 0 or 9)\n");
   const char* box_arg[] = {box.c_str()};
   const std::string models = modelsDir().string();
   const char* roots[] = {models.c_str()};

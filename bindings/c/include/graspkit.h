@@ -140,8 +140,8 @@ GRASPKIT_C_API graspkit_status graspkit_world_find_body(const graspkit_world* wo
 GRASPKIT_C_API graspkit_status graspkit_body_name(const graspkit_world* world, int32_t body,
                                                   char* buffer, size_t capacity, size_t* length);
 /* 1 for a graspable (dynamic) body, 0 for an obstacle. */
-GRASPKIT_C_API graspkit_status graspkit_body_is_graspable(const graspkit_world* world,
-                                                          int32_t body, int* graspable);
+GRASPKIT_C_API graspkit_status graspkit_body_is_graspable(const graspkit_world* world, int32_t body,
+                                                          int* graspable);
 /* Mass in grams, and the centre of gravity in the body frame (mm; `cog` may be NULL). */
 GRASPKIT_C_API graspkit_status graspkit_body_mass(const graspkit_world* world, int32_t body,
                                                   double* mass, double cog[3]);
@@ -166,17 +166,16 @@ GRASPKIT_C_API graspkit_status graspkit_world_first_hand(const graspkit_world* w
                                                          int32_t* robot);
 GRASPKIT_C_API graspkit_status graspkit_robot_name(const graspkit_world* world, int32_t robot,
                                                    char* buffer, size_t capacity, size_t* length);
-GRASPKIT_C_API graspkit_status graspkit_robot_dof_count(const graspkit_world* world,
-                                                        int32_t robot, int32_t* count);
+GRASPKIT_C_API graspkit_status graspkit_robot_dof_count(const graspkit_world* world, int32_t robot,
+                                                        int32_t* count);
 /* `count` must be the robot's DOF count. */
 GRASPKIT_C_API graspkit_status graspkit_robot_get_dofs(const graspkit_world* world, int32_t robot,
                                                        double* values, size_t count);
 /* Sets every DOF (clamped into its range; mounted robots follow). NaN is GRASPKIT_ERROR_INPUT. */
 GRASPKIT_C_API graspkit_status graspkit_robot_set_dofs(graspkit_world* world, int32_t robot,
                                                        const double* values, size_t count);
-GRASPKIT_C_API graspkit_status graspkit_robot_dof_limits(const graspkit_world* world,
-                                                         int32_t robot, double* min, double* max,
-                                                         size_t count);
+GRASPKIT_C_API graspkit_status graspkit_robot_dof_limits(const graspkit_world* world, int32_t robot,
+                                                         double* min, double* max, size_t count);
 /* The base (palm) pose; setting it moves every robot mounted on this one. */
 GRASPKIT_C_API graspkit_status graspkit_robot_get_pose(const graspkit_world* world, int32_t robot,
                                                        graspkit_pose* pose);
@@ -184,9 +183,8 @@ GRASPKIT_C_API graspkit_status graspkit_robot_set_pose(graspkit_world* world, in
                                                        const graspkit_pose* pose);
 GRASPKIT_C_API graspkit_status graspkit_robot_chain_count(const graspkit_world* world,
                                                           int32_t robot, int32_t* count);
-GRASPKIT_C_API graspkit_status graspkit_robot_link_count(const graspkit_world* world,
-                                                         int32_t robot, int32_t chain,
-                                                         int32_t* count);
+GRASPKIT_C_API graspkit_status graspkit_robot_link_count(const graspkit_world* world, int32_t robot,
+                                                         int32_t chain, int32_t* count);
 /* The world pose of link `link` of chain `chain`; chain = link = -1 is the palm. */
 GRASPKIT_C_API graspkit_status graspkit_robot_link_pose(const graspkit_world* world, int32_t robot,
                                                         int32_t chain, int32_t link,
@@ -371,8 +369,8 @@ GRASPKIT_C_API graspkit_status graspkit_plugins_scan(size_t* count);
 GRASPKIT_C_API graspkit_status graspkit_plugin_load(const char* path);
 /* Plugin `index` of the last scan: its name ("" when unreadable), whether it loaded, and, for a
  * failed one, why (into `error`, which may be NULL with error_capacity 0). */
-GRASPKIT_C_API graspkit_status graspkit_plugin_info(size_t index, char* name,
-                                                    size_t name_capacity, int* loaded, char* error,
+GRASPKIT_C_API graspkit_status graspkit_plugin_info(size_t index, char* name, size_t name_capacity,
+                                                    int* loaded, char* error,
                                                     size_t error_capacity);
 /* The folders searched, colon-separated. */
 GRASPKIT_C_API graspkit_status graspkit_plugin_search_path(char* buffer, size_t capacity,

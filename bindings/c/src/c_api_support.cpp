@@ -11,8 +11,7 @@ LastError& lastError() {
   return error;
 }
 
-void setLastError(graspkit_status status, const std::string& message,
-                  const SourceLocation& where) {
+void setLastError(graspkit_status status, const std::string& message, const SourceLocation& where) {
   LastError& e = lastError();
   const std::string prefix = where.str();
   e.message = prefix.empty() ? message : prefix + ": " + message;
@@ -61,9 +60,9 @@ void copyString(std::string_view text, char* buffer, std::size_t capacity, std::
     buffer[n] = '\0';
   }
   if (text.size() >= capacity)
-    throw Failure{GRASPKIT_ERROR_BUFFER_TOO_SMALL,
-                  fmt::format("a string of {} bytes does not fit a buffer of {}", text.size() + 1,
-                              capacity)};
+    throw Failure{
+        GRASPKIT_ERROR_BUFFER_TOO_SMALL,
+        fmt::format("a string of {} bytes does not fit a buffer of {}", text.size() + 1, capacity)};
 }
 
 Transform toTransform(const graspkit_pose& pose) {

@@ -83,8 +83,7 @@ graspkit_status guarded(Body&& body) noexcept {
 // Throws a Failure naming `what` when `pointer` is null.
 template <class T>
 T* require(T* pointer, const char* what) {
-  if (!pointer)
-    throw Failure{GRASPKIT_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL"};
+  if (!pointer) throw Failure{GRASPKIT_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL"};
   return pointer;
 }
 

@@ -21,9 +21,9 @@ const graspkit_plan& planOf(const graspkit_plan* plan) {
 
 const PlannedGrasp& graspAt(const graspkit_plan& plan, std::size_t index) {
   if (index >= plan.grasps.size())
-    throw Failure{GRASPKIT_ERROR_OUT_OF_RANGE,
-                  fmt::format("grasp {} does not exist (the plan has {})", index,
-                              plan.grasps.size())};
+    throw Failure{
+        GRASPKIT_ERROR_OUT_OF_RANGE,
+        fmt::format("grasp {} does not exist (the plan has {})", index, plan.grasps.size())};
   return plan.grasps[index];
 }
 
@@ -58,9 +58,10 @@ graspkit_status graspkit_plan_grasps(const graspkit_world* world, int32_t robot,
     if (!o.planner) o.planner = "simann";
     if (!o.energy) o.energy = "contact";
     if (o.steps < 0 || std::isnan(o.seconds) || o.seconds < 0 || o.threads < 0 || o.top < 1)
-      throw Error(fmt::format("plan options: steps {}, seconds {}, threads {}, top {}: steps and "
-                              "seconds must be >= 0, threads >= 0 and top >= 1",
-                              o.steps, o.seconds, o.threads, o.top));
+      throw Error(
+          fmt::format("plan options: steps {}, seconds {}, threads {}, top {}: steps and "
+                      "seconds must be >= 0, threads >= 0 and top >= 1",
+                      o.steps, o.seconds, o.threads, o.top));
 
     auto result = std::make_unique<graspkit_plan>();
     PlanningRequest& request = result->request;

@@ -45,9 +45,9 @@ graspkit_status graspkit_plugin_info(size_t index, char* name, size_t name_capac
     std::lock_guard lock(scan_mutex);
     const std::vector<PluginInfo>& scan = lastScan();
     if (index >= scan.size())
-      throw Failure{GRASPKIT_ERROR_OUT_OF_RANGE,
-                    fmt::format("plugin {} does not exist (the last scan found {})", index,
-                                scan.size())};
+      throw Failure{
+          GRASPKIT_ERROR_OUT_OF_RANGE,
+          fmt::format("plugin {} does not exist (the last scan found {})", index, scan.size())};
     const PluginInfo& info = scan[index];
     // Both strings are written before a too-small buffer is reported.
     graspkit_status status = GRASPKIT_OK;

@@ -43,9 +43,9 @@ void checkRay(const graspkit_ray& r, std::size_t i) {
   const bool zero = r.direction[0] == 0 && r.direction[1] == 0 && r.direction[2] == 0;
   if (!finite || zero || r.tmin < 0 || o > kFar || r.tmin > kFar)
     throw Error(fmt::format("ray {}: {}", i,
-                            !finite   ? "a value is not a finite number"
-                            : zero    ? "the direction is zero"
-                            : o > kFar ? "the origin is more than 1e20 mm from the world origin"
+                            !finite      ? "a value is not a finite number"
+                            : zero       ? "the direction is zero"
+                            : o > kFar   ? "the origin is more than 1e20 mm from the world origin"
                             : r.tmin < 0 ? "tmin is negative"
                                          : "tmin is more than 1e20 mm"));
 }
@@ -70,9 +70,7 @@ graspkit_status graspkit_ray_scene_new(const graspkit_world* world, int include_
 }
 
 graspkit_status graspkit_ray_scene_update(graspkit_ray_scene* scene, const graspkit_world* world) {
-  return guarded([&] {
-    require(scene, "scene")->scene.update(require(world, "world")->world);
-  });
+  return guarded([&] { require(scene, "scene")->scene.update(require(world, "world")->world); });
 }
 
 graspkit_status graspkit_ray_scene_intersect(const graspkit_ray_scene* scene,

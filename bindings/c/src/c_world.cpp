@@ -32,9 +32,8 @@ template <class Names>
 [[noreturn]] void notFound(const char* what, const std::string& name, const Names& names) {
   std::string known;
   for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw Failure{GRASPKIT_ERROR_NOT_FOUND,
-                fmt::format("no {} named '{}' (the world has: {})", what, name,
-                            known.empty() ? "none" : known)};
+  throw Failure{GRASPKIT_ERROR_NOT_FOUND, fmt::format("no {} named '{}' (the world has: {})", what,
+                                                      name, known.empty() ? "none" : known)};
 }
 
 void mergeInto(World& target, World&& source) {
@@ -101,9 +100,8 @@ void graspkit_world_free(graspkit_world* world) {
 }
 
 graspkit_status graspkit_world_body_count(const graspkit_world* world, int32_t* count) {
-  return guarded([&] {
-    *require(count, "count") = static_cast<int32_t>(worldOf(world).bodies().size());
-  });
+  return guarded(
+      [&] { *require(count, "count") = static_cast<int32_t>(worldOf(world).bodies().size()); });
 }
 
 graspkit_status graspkit_world_find_body(const graspkit_world* world, const char* name,
@@ -224,8 +222,8 @@ graspkit_status graspkit_robot_dof_count(const graspkit_world* world, int32_t ro
   });
 }
 
-graspkit_status graspkit_robot_get_dofs(const graspkit_world* world, int32_t robot,
-                                        double* values, size_t count) {
+graspkit_status graspkit_robot_get_dofs(const graspkit_world* world, int32_t robot, double* values,
+                                        size_t count) {
   return guarded([&] {
     const Robot& r = checkedRobot(worldOf(world), robot);
     checkCount(count, static_cast<std::size_t>(r.dofCount()), "graspkit_robot_get_dofs");
@@ -234,8 +232,8 @@ graspkit_status graspkit_robot_get_dofs(const graspkit_world* world, int32_t rob
   });
 }
 
-graspkit_status graspkit_robot_set_dofs(graspkit_world* world, int32_t robot,
-                                        const double* values, size_t count) {
+graspkit_status graspkit_robot_set_dofs(graspkit_world* world, int32_t robot, const double* values,
+                                        size_t count) {
   return guarded([&] {
     World& w = worldOf(world);
     const Robot& r = checkedRobot(w, robot);
@@ -245,8 +243,8 @@ graspkit_status graspkit_robot_set_dofs(graspkit_world* world, int32_t robot,
   });
 }
 
-graspkit_status graspkit_robot_dof_limits(const graspkit_world* world, int32_t robot,
-                                          double* min, double* max, size_t count) {
+graspkit_status graspkit_robot_dof_limits(const graspkit_world* world, int32_t robot, double* min,
+                                          double* max, size_t count) {
   return guarded([&] {
     const Robot& r = checkedRobot(worldOf(world), robot);
     checkCount(count, static_cast<std::size_t>(r.dofCount()), "graspkit_robot_dof_limits");
@@ -286,22 +284,22 @@ graspkit_status graspkit_robot_chain_count(const graspkit_world* world, int32_t 
   });
 }
 
-graspkit_status graspkit_robot_link_count(const graspkit_world* world, int32_t robot,
-                                          int32_t chain, int32_t* count) {
+graspkit_status graspkit_robot_link_count(const graspkit_world* world, int32_t robot, int32_t chain,
+                                          int32_t* count) {
   return guarded([&] {
     const Robot& r = checkedRobot(worldOf(world), robot);
     const auto chains = static_cast<int32_t>(r.model().chains.size());
     if (chain < 0 || chain >= chains)
-      throw Failure{GRASPKIT_ERROR_OUT_OF_RANGE,
-                    fmt::format("chain {} does not exist ({} has {} chains)", chain, r.name(),
-                                chains)};
+      throw Failure{
+          GRASPKIT_ERROR_OUT_OF_RANGE,
+          fmt::format("chain {} does not exist ({} has {} chains)", chain, r.name(), chains)};
     *require(count, "count") =
         static_cast<int32_t>(r.model().chains[static_cast<std::size_t>(chain)].links.size());
   });
 }
 
-graspkit_status graspkit_robot_link_pose(const graspkit_world* world, int32_t robot,
-                                         int32_t chain, int32_t link, graspkit_pose* pose) {
+graspkit_status graspkit_robot_link_pose(const graspkit_world* world, int32_t robot, int32_t chain,
+                                         int32_t link, graspkit_pose* pose) {
   return guarded([&] {
     const Robot& r = checkedRobot(worldOf(world), robot);
     require(pose, "pose");

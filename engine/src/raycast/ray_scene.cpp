@@ -236,7 +236,6 @@ void RayScene::intersect(std::span<const Ray> rays, HitSink sink, void* context)
 // Each ray is checked again as it is traced (checkedRay also normalises it).
 template <class Sink>
 void RayScene::intersectChecked(std::span<const Ray> rays, Sink&& sink) const {
-
   // Packets of 8: on incoherent rays (bench/raycast_bench.cpp) they beat single rays by 15%,
   // packets of 16 by 6% and rtcIntersect1M streams by 9% (AVX-512 machine, Embree 3.13).
   constexpr int N = 8;

@@ -27,12 +27,7 @@ pub struct ScriptOptions {
 /// its end). A script error is `Err` with status `Script` and the traceback as the message.
 pub fn run_script<P: AsRef<Path>>(path: P, options: &ScriptOptions) -> Result<i32> {
     let path = c_path(path.as_ref())?;
-    let roots: Vec<String> = options
-        .roots
-        .iter()
-        .map(|p| p.to_string_lossy().into_owned())
-        .collect();
-    let roots = CStrings::new(&roots)?;
+    let roots = CStrings::from_paths(&options.roots)?;
     let args = CStrings::new(&options.args)?;
     let raw = sys::graspkit_script_options {
         roots: roots.as_ptr(),

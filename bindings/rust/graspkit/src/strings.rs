@@ -46,6 +46,15 @@ pub(crate) struct CStrings {
 }
 
 impl CStrings {
+    /// Folder paths, as the options structs of the C ABI take them.
+    pub(crate) fn from_paths(paths: &[std::path::PathBuf]) -> Result<CStrings> {
+        let texts: Vec<String> = paths
+            .iter()
+            .map(|p| p.to_string_lossy().into_owned())
+            .collect();
+        CStrings::new(&texts)
+    }
+
     pub(crate) fn new<S: AsRef<str>>(items: &[S]) -> Result<CStrings> {
         let owned = items
             .iter()

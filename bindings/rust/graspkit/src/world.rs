@@ -154,12 +154,7 @@ struct RawLoadOptions {
 }
 
 fn raw_load_options(options: &LoadOptions) -> Result<RawLoadOptions> {
-    let roots: Vec<String> = options
-        .roots
-        .iter()
-        .map(|p| p.to_string_lossy().into_owned())
-        .collect();
-    let roots = CStrings::new(&roots)?;
+    let roots = CStrings::from_paths(&options.roots)?;
     let raw = sys::graspkit_load_options {
         roots: roots.as_ptr(),
         root_count: roots.len(),
