@@ -38,10 +38,17 @@ if(GENERATOR)
   list(APPEND options -G ${GENERATOR})
 endif()
 if(SANITIZE)
-  set(flags -fsanitize=address,undefined -fno-omit-frame-pointer)
+  # libgraspkit_c is C++: under UBSan it calls the runtime's C++ part, which clang links into a
+  # C program only when asked, with libstdc++ under it (gcc's libubsan holds both).
+  set(link_flags -fsanitize=address,undefined)
+  if(C_COMPILER MATCHES "clang")
+    list(APPEND link_flags -fsanitize-link-c++-runtime -lstdc++)
+  endif()
+  set(flags -fsanitize=address,undefined -fno-omit-frame-pointer ${link_flags})
+  list(JOIN link_flags " " link_flags)
   list(APPEND options "-DCMAKE_C_FLAGS=-fsanitize=address,undefined -fno-omit-frame-pointer"
        "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-omit-frame-pointer"
-       "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
+       "-DCMAKE_EXE_LINKER_FLAGS=${link_flags}")
 endif()
 
 # The reference: the installed program.

@@ -67,7 +67,7 @@ GRASPKIT_C_API const char* graspkit_last_error_file(void);
 GRASPKIT_C_API int graspkit_last_error_line(void);
 GRASPKIT_C_API const char* graspkit_last_error_element(void);
 /* A short name of a status, e.g. "input error"; a static string. */
-GRASPKIT_C_API const char* graspkit_status_name(graspkit_status status);
+GRASPKIT_C_API const char* graspkit_status_name(int32_t status);
 
 /* ---- Log ------------------------------------------------------------------------------------ */
 
@@ -239,10 +239,11 @@ typedef struct graspkit_quality {
 
 typedef struct graspkit_grasp graspkit_grasp;
 
-/* The hand's contacts with body `object` as the world stands, and their quality. */
+/* The hand's contacts with body `object` as the world stands, and their quality. `wrench_space`
+ * is a graspkit_wrench_space (an int32_t, as every enum the ABI reads, so that any value a caller
+ * passes is defined; unknown ones are refused). */
 GRASPKIT_C_API graspkit_status graspkit_grasp_analyze(const graspkit_world* world, int32_t robot,
-                                                      int32_t object,
-                                                      graspkit_wrench_space wrench_space,
+                                                      int32_t object, int32_t wrench_space,
                                                       graspkit_grasp** grasp);
 GRASPKIT_C_API graspkit_status graspkit_grasp_quality(const graspkit_grasp* grasp,
                                                       graspkit_quality* quality);

@@ -14,7 +14,7 @@ const char* graspkit_version(void) {
   return graspkit::engineVersion();
 }
 
-const char* graspkit_status_name(graspkit_status status) {
+const char* graspkit_status_name(int32_t status) {
   switch (status) {
     case GRASPKIT_OK:
       return "ok";

@@ -56,7 +56,7 @@ graspkit_status graspkit_robot_autograsp(graspkit_world* world, int32_t robot,
 }
 
 graspkit_status graspkit_grasp_analyze(const graspkit_world* world, int32_t robot, int32_t object,
-                                       graspkit_wrench_space wrench_space, graspkit_grasp** grasp) {
+                                       int32_t wrench_space, graspkit_grasp** grasp) {
   return guarded([&] {
     const World& w = require(world, "world")->world;
     require(grasp, "grasp");

@@ -55,7 +55,11 @@ void mergeInto(World& target, World&& source) {
 extern "C" {
 
 graspkit_status graspkit_world_new(graspkit_world** world) {
-  return guarded([&] { *require(world, "world") = new graspkit_world{}; });
+  return guarded([&] {
+    // Checked first: in `*p = new T`, the new is evaluated before p, and would leak.
+    require(world, "world");
+    *world = new graspkit_world{};
+  });
 }
 
 graspkit_status graspkit_world_load(const char* path, const graspkit_load_options* options,

@@ -43,7 +43,7 @@ pub const GRASPKIT_MOTION_ITERATION_LIMIT: i32 = 2;
 pub const GRASPKIT_MOTION_INTERPOLATION_ERROR: i32 = 3;
 pub const GRASPKIT_MOTION_NO_CONTACT: i32 = 4;
 
-pub type graspkit_wrench_space = c_int;
+pub type graspkit_wrench_space = i32;
 pub const GRASPKIT_GWS_L1: graspkit_wrench_space = 0;
 pub const GRASPKIT_GWS_LINF: graspkit_wrench_space = 1;
 
@@ -181,7 +181,7 @@ extern "C" {
     pub fn graspkit_last_error_file() -> *const c_char;
     pub fn graspkit_last_error_line() -> c_int;
     pub fn graspkit_last_error_element() -> *const c_char;
-    pub fn graspkit_status_name(status: graspkit_status) -> *const c_char;
+    pub fn graspkit_status_name(status: i32) -> *const c_char;
     pub fn graspkit_set_log_callback(f: graspkit_log_fn, user: *mut c_void) -> graspkit_status;
 
     pub fn graspkit_world_new(world: *mut *mut graspkit_world) -> graspkit_status;
@@ -194,8 +194,10 @@ extern "C" {
         world: *const graspkit_world,
         clone: *mut *mut graspkit_world,
     ) -> graspkit_status;
-    pub fn graspkit_world_save(world: *const graspkit_world, path: *const c_char)
-        -> graspkit_status;
+    pub fn graspkit_world_save(
+        world: *const graspkit_world,
+        path: *const c_char,
+    ) -> graspkit_status;
     pub fn graspkit_world_add_file(
         world: *mut graspkit_world,
         path: *const c_char,
@@ -205,8 +207,10 @@ extern "C" {
     ) -> graspkit_status;
     pub fn graspkit_world_free(world: *mut graspkit_world);
 
-    pub fn graspkit_world_body_count(world: *const graspkit_world, count: *mut i32)
-        -> graspkit_status;
+    pub fn graspkit_world_body_count(
+        world: *const graspkit_world,
+        count: *mut i32,
+    ) -> graspkit_status;
     pub fn graspkit_world_find_body(
         world: *const graspkit_world,
         name: *const c_char,
@@ -248,15 +252,19 @@ extern "C" {
         length: *mut usize,
     ) -> graspkit_status;
 
-    pub fn graspkit_world_robot_count(world: *const graspkit_world, count: *mut i32)
-        -> graspkit_status;
+    pub fn graspkit_world_robot_count(
+        world: *const graspkit_world,
+        count: *mut i32,
+    ) -> graspkit_status;
     pub fn graspkit_world_find_robot(
         world: *const graspkit_world,
         name: *const c_char,
         robot: *mut i32,
     ) -> graspkit_status;
-    pub fn graspkit_world_first_hand(world: *const graspkit_world, robot: *mut i32)
-        -> graspkit_status;
+    pub fn graspkit_world_first_hand(
+        world: *const graspkit_world,
+        robot: *mut i32,
+    ) -> graspkit_status;
     pub fn graspkit_robot_name(
         world: *const graspkit_world,
         robot: i32,
@@ -333,8 +341,10 @@ extern "C" {
         grasp: *const graspkit_grasp,
         quality: *mut graspkit_quality,
     ) -> graspkit_status;
-    pub fn graspkit_grasp_contact_count(grasp: *const graspkit_grasp, count: *mut usize)
-        -> graspkit_status;
+    pub fn graspkit_grasp_contact_count(
+        grasp: *const graspkit_grasp,
+        count: *mut usize,
+    ) -> graspkit_status;
     pub fn graspkit_grasp_contacts(
         grasp: *const graspkit_grasp,
         contacts: *mut graspkit_contact,

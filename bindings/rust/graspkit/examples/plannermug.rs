@@ -54,7 +54,10 @@ fn run(args: &[String]) -> graspkit::Result<()> {
     println!("{} contacts with the object", grasp.contacts()?.len());
     println!("epsilon {}", g7(quality.epsilon));
     println!("volume {}", g7(quality.volume));
-    println!("force closure {}", if quality.force_closure { "yes" } else { "no" });
+    println!(
+        "force closure {}",
+        if quality.force_closure { "yes" } else { "no" }
+    );
     Ok(())
 }
 

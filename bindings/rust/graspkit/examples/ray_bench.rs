@@ -23,14 +23,20 @@ impl Random {
 
 fn main() {
     let world_file = std::env::args().nth(1).unwrap_or_else(|| {
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/graspit-data/worlds/plannerMug.xml")
-            .to_string()
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../../shared/graspit-data/worlds/plannerMug.xml"
+        )
+        .to_string()
     });
     let world = World::load(&world_file, &LoadOptions::default()).expect("the world loads");
     let scene = RayScene::new(&world, false).expect("a scene");
     // A box of +-60 mm about the mug's origin: the mug is about 90 mm across, so most rays hit.
     let centre = world.body_pose(0).unwrap().translation;
-    let (lo, hi) = ([centre[0] - 60.0, centre[1] - 60.0, centre[2] - 60.0], [centre[0] + 60.0, centre[1] + 60.0, centre[2] + 60.0]);
+    let (lo, hi) = (
+        [centre[0] - 60.0, centre[1] - 60.0, centre[2] - 60.0],
+        [centre[0] + 60.0, centre[1] + 60.0, centre[2] + 60.0],
+    );
     let mut random = Random(7);
     let count = 1_000_000;
     let rays: Vec<Ray> = (0..count)
@@ -40,7 +46,11 @@ fn main() {
                 *v = random.unit() - 0.5;
             }
             let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-9);
-            let from = [centre[0] + 200.0 * d[0] / n, centre[1] + 200.0 * d[1] / n, centre[2] + 200.0 * d[2] / n];
+            let from = [
+                centre[0] + 200.0 * d[0] / n,
+                centre[1] + 200.0 * d[1] / n,
+                centre[2] + 200.0 * d[2] / n,
+            ];
             let mut to = [0.0; 3];
             for k in 0..3 {
                 to[k] = lo[k] + random.unit() * (hi[k] - lo[k]);

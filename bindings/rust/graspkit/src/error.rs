@@ -69,7 +69,9 @@ pub(crate) fn text(pointer: *const std::os::raw::c_char) -> String {
     if pointer.is_null() {
         return String::new();
     }
-    unsafe { CStr::from_ptr(pointer) }.to_string_lossy().into_owned()
+    unsafe { CStr::from_ptr(pointer) }
+        .to_string_lossy()
+        .into_owned()
 }
 
 /// Turns a status into a Result, reading this thread's last error on failure.

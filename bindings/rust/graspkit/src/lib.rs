@@ -29,6 +29,7 @@ mod plan;
 mod rays;
 mod script;
 mod strings;
+mod views;
 mod world;
 
 pub use error::{Error, Result, Status};
@@ -39,6 +40,7 @@ pub use script::{
     plugin_load, plugin_search_path, plugins_scan, run_script, set_log_callback, LogRecord,
     PluginInfo, ScriptOptions,
 };
+pub use views::{Body, Robot};
 pub use world::{AutoGrasp, BodyRef, LoadOptions, MotionEnd, Pose, World};
 
 /// The engine's version, e.g. "0.1.0".

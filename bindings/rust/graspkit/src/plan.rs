@@ -90,7 +90,9 @@ impl Plan {
             top: options.top,
         };
         let mut raw = ptr::null_mut();
-        check(unsafe { sys::graspkit_plan_grasps(world.raw, robot, object, &raw_options, &mut raw) })?;
+        check(unsafe {
+            sys::graspkit_plan_grasps(world.raw, robot, object, &raw_options, &mut raw)
+        })?;
         let mut plan = Plan {
             raw,
             grasps: Vec::new(),

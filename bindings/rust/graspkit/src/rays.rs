@@ -104,7 +104,12 @@ impl RayScene {
             )));
         }
         check(unsafe {
-            sys::graspkit_ray_scene_intersect(self.raw, rays.as_ptr(), hits.as_mut_ptr(), rays.len())
+            sys::graspkit_ray_scene_intersect(
+                self.raw,
+                rays.as_ptr(),
+                hits.as_mut_ptr(),
+                rays.len(),
+            )
         })
     }
 

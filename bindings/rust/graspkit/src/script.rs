@@ -72,9 +72,11 @@ pub fn plugins_scan() -> Result<Vec<PluginInfo>> {
                 error.len(),
             )
         })?;
-        let text = |b: &[u8]| unsafe { CStr::from_ptr(b.as_ptr() as *const c_char) }
-            .to_string_lossy()
-            .into_owned();
+        let text = |b: &[u8]| {
+            unsafe { CStr::from_ptr(b.as_ptr() as *const c_char) }
+                .to_string_lossy()
+                .into_owned()
+        };
         list.push(PluginInfo {
             name: text(&name),
             loaded: loaded != 0,
@@ -142,10 +144,6 @@ unsafe extern "C" fn log_trampoline(
 pub fn set_log_callback(callback: Option<LogCallback>) -> Result<()> {
     let install = callback.is_some();
     *LOG_CALLBACK.lock().unwrap_or_else(|e| e.into_inner()) = callback;
-    let f: sys::graspkit_log_fn = if install {
-        Some(log_trampoline)
-    } else {
-        None
-    };
+    let f: sys::graspkit_log_fn = if install { Some(log_trampoline) } else { None };
     check(unsafe { sys::graspkit_set_log_callback(f, std::ptr::null_mut()) })
 }

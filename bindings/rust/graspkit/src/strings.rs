@@ -28,10 +28,18 @@ where
 {
     let mut buffer = vec![0u8; 256];
     let mut length = 0usize;
-    let mut status = fill(buffer.as_mut_ptr() as *mut c_char, buffer.len(), &mut length);
+    let mut status = fill(
+        buffer.as_mut_ptr() as *mut c_char,
+        buffer.len(),
+        &mut length,
+    );
     if status == sys::GRASPKIT_ERROR_BUFFER_TOO_SMALL {
         buffer = vec![0u8; length + 1];
-        status = fill(buffer.as_mut_ptr() as *mut c_char, buffer.len(), &mut length);
+        status = fill(
+            buffer.as_mut_ptr() as *mut c_char,
+            buffer.len(),
+            &mut length,
+        );
     }
     check(status)?;
     buffer.truncate(length);

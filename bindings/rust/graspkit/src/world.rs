@@ -195,12 +195,22 @@ impl World {
 
     /// Adds the bodies and robots of a file; returns the index of the first body and of the
     /// first robot added. On failure the world is left as it was.
-    pub fn add_file<P: AsRef<Path>>(&mut self, path: P, options: &LoadOptions) -> Result<(i32, i32)> {
+    pub fn add_file<P: AsRef<Path>>(
+        &mut self,
+        path: P,
+        options: &LoadOptions,
+    ) -> Result<(i32, i32)> {
         let path = c_path(path.as_ref())?;
         let options = raw_load_options(options)?;
         let (mut body, mut robot) = (0, 0);
         check(unsafe {
-            sys::graspkit_world_add_file(self.raw, path.as_ptr(), &options.raw, &mut body, &mut robot)
+            sys::graspkit_world_add_file(
+                self.raw,
+                path.as_ptr(),
+                &options.raw,
+                &mut body,
+                &mut robot,
+            )
         })?;
         Ok((body, robot))
     }

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use graspkit::{BodyRef, LoadOptions, Plan, PlanOptions, Pose, RayScene, Status, World, WrenchSpace};
+use graspkit::{
+    BodyRef, LoadOptions, Plan, PlanOptions, Pose, RayScene, Status, World, WrenchSpace,
+};
 
 fn project() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..")
@@ -41,7 +43,11 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn box_world() -> World {
-    World::load(project().join("models/objects/box.xml"), &LoadOptions::default()).unwrap()
+    World::load(
+        project().join("models/objects/box.xml"),
+        &LoadOptions::default(),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -85,20 +91,38 @@ fn autograsp_on_planner_mug_gives_graspits_figures() {
 
 #[test]
 fn errors_carry_status_and_place() {
-    let missing = World::load("/no/such/world.xml", &LoadOptions::default()).err().unwrap();
+    let missing = World::load("/no/such/world.xml", &LoadOptions::default())
+        .err()
+        .unwrap();
     assert_eq!(missing.status, Status::Input);
-    assert!(missing.message.contains("/no/such/world.xml"), "{}", missing);
+    assert!(
+        missing.message.contains("/no/such/world.xml"),
+        "{}",
+        missing
+    );
 
     let mut world = box_world();
-    assert_eq!(world.body_name(99).err().unwrap().status, Status::OutOfRange);
-    assert_eq!(world.find_body("nothing").err().unwrap().status, Status::NotFound);
+    assert_eq!(
+        world.body_name(99).err().unwrap().status,
+        Status::OutOfRange
+    );
+    assert_eq!(
+        world.find_body("nothing").err().unwrap().status,
+        Status::NotFound
+    );
     assert_eq!(world.dofs(0).err().unwrap().status, Status::OutOfRange);
     let nan = Pose {
         translation: [f64::NAN, 0.0, 0.0],
         rotation: [1.0, 0.0, 0.0, 0.0],
     };
-    assert_eq!(world.set_body_pose(0, &nan).err().unwrap().status, Status::Input);
-    assert_eq!(world.find_body("a\0b").err().unwrap().status, Status::InvalidArgument);
+    assert_eq!(
+        world.set_body_pose(0, &nan).err().unwrap().status,
+        Status::Input
+    );
+    assert_eq!(
+        world.find_body("a\0b").err().unwrap().status,
+        Status::InvalidArgument
+    );
 }
 
 #[test]
@@ -116,8 +140,15 @@ fn dofs_and_their_errors() {
     assert_eq!(dofs[3], max[3], "clamped");
     let wrong = world.set_dofs(0, &[0.1, 0.2]).err().unwrap();
     assert_eq!(wrong.status, Status::InvalidArgument);
-    assert!(wrong.message.contains("2 values given, 4 expected"), "{}", wrong);
-    assert_eq!(world.set_dofs(99, &[0.0; 4]).err().unwrap().status, Status::OutOfRange);
+    assert!(
+        wrong.message.contains("2 values given, 4 expected"),
+        "{}",
+        wrong
+    );
+    assert_eq!(
+        world.set_dofs(99, &[0.0; 4]).err().unwrap().status,
+        Status::OutOfRange
+    );
 }
 
 #[test]
@@ -157,7 +188,13 @@ fn rays_and_nearest_points_on_the_box() {
     assert!((nearest[0].unwrap().distance - 70.0).abs() < 1e-9);
 
     world
-        .set_body_pose(0, &Pose { translation: [0.0, 0.0, 10.0], ..Pose::IDENTITY })
+        .set_body_pose(
+            0,
+            &Pose {
+                translation: [0.0, 0.0, 10.0],
+                ..Pose::IDENTITY
+            },
+        )
         .unwrap();
     scene.update(&world).unwrap();
     let mut raw = vec![graspkit::RawHit::default(); 1];
@@ -168,7 +205,10 @@ fn rays_and_nearest_points_on_the_box() {
     let bad = scene.intersect(&[rays[0], zero]).err().unwrap();
     assert_eq!(bad.status, Status::Input);
     assert!(bad.message.contains("ray 1"), "{}", bad);
-    assert_eq!(scene.intersect_into(&rays, &mut raw).err().unwrap().status, Status::InvalidArgument);
+    assert_eq!(
+        scene.intersect_into(&rays, &mut raw).err().unwrap().status,
+        Status::InvalidArgument
+    );
 }
 
 #[test]
@@ -200,13 +240,19 @@ fn planned_grasps_rank_and_reproduce() {
     assert!((q.volume - grasps[0].volume).abs() < 1e-9);
     assert_eq!(again.contacts().unwrap().len() as i32, grasps[0].contacts);
     assert_eq!(plan.grasp_dofs(0, 4).unwrap(), closed.dofs(0).unwrap());
-    assert_eq!(plan.grasp_world(99).err().unwrap().status, Status::OutOfRange);
+    assert_eq!(
+        plan.grasp_world(99).err().unwrap().status,
+        Status::OutOfRange
+    );
 
     let unknown = PlanOptions {
         energy: "no-such-energy".to_string(),
         ..options
     };
-    assert_eq!(Plan::run(&world, 0, 0, &unknown).err().unwrap().status, Status::Input);
+    assert_eq!(
+        Plan::run(&world, 0, 0, &unknown).err().unwrap().status,
+        Status::Input
+    );
 }
 
 #[test]
@@ -225,7 +271,11 @@ fn a_world_moves_to_another_thread() {
     let close = |mut w: World| {
         std::thread::spawn(move || {
             w.autograsp(0).unwrap();
-            w.analyze_grasp(0, 0, WrenchSpace::L1).unwrap().contacts().unwrap().len()
+            w.analyze_grasp(0, 0, WrenchSpace::L1)
+                .unwrap()
+                .contacts()
+                .unwrap()
+                .len()
         })
     };
     let (ta, tb) = (close(a), close(b));
@@ -245,7 +295,9 @@ fn lua_scenarios() {
     assert_eq!(graspkit::run_script(&exits, &options).unwrap(), 3);
     let fails = dir.join("fails.lua");
     std::fs::write(&fails, "error('boom')\n").unwrap();
-    let e = graspkit::run_script(&fails, &Default::default()).err().unwrap();
+    let e = graspkit::run_script(&fails, &Default::default())
+        .err()
+        .unwrap();
     assert_eq!(e.status, Status::Script);
     assert!(e.message.contains("boom"), "{}", e);
 }
@@ -253,11 +305,20 @@ fn lua_scenarios() {
 #[test]
 fn plugins_and_warnings() {
     let plugins = graspkit::plugins_scan().unwrap();
-    assert!(plugins.iter().any(|p| p.name == "barrett" && p.loaded), "{:?}", plugins);
-    assert!(graspkit::plugin_search_path().unwrap().contains("graspkit/plugins"));
+    assert!(
+        plugins.iter().any(|p| p.name == "barrett" && p.loaded),
+        "{:?}",
+        plugins
+    );
+    assert!(graspkit::plugin_search_path()
+        .unwrap()
+        .contains("graspkit/plugins"));
     let fake = scratch("plugin").join("fake.so");
     std::fs::write(&fake, "not an ELF file").unwrap();
-    assert_eq!(graspkit::plugin_load(&fake).err().unwrap().status, Status::Input);
+    assert_eq!(
+        graspkit::plugin_load(&fake).err().unwrap().status,
+        Status::Input
+    );
 
     // A body file with an unknown tag on line 4 warns, naming it.
     let dir = scratch("log");
@@ -279,4 +340,27 @@ fn plugins_and_warnings() {
     World::load(&file, &LoadOptions::default()).unwrap();
     graspkit::set_log_callback(None).unwrap();
     assert_eq!(seen.load(Ordering::SeqCst), 1);
+}
+
+#[test]
+fn views_of_bodies_and_robots() {
+    let (world, _) = match planner_mug() {
+        Some(w) => w,
+        None => return,
+    };
+    let bodies = world.bodies().unwrap();
+    assert_eq!(bodies.len(), 1);
+    assert_eq!(bodies[0].name().unwrap(), "mug");
+    assert_eq!(bodies[0].mass().unwrap().0, 200.0); // GraspIt!'s mug.xml: 200 g
+    let robot = world.robot(0).unwrap();
+    assert_eq!(robot.name().unwrap(), "Barrett");
+    let poses = robot.link_poses().unwrap();
+    // Barrett.xml: two fingers of three links, the thumb of two.
+    let links: Vec<usize> = poses.iter().map(|c| c.len()).collect();
+    assert_eq!(links, vec![3, 3, 2]);
+    // The palm is the robot's base.
+    assert_eq!(robot.link_pose(-1, -1).unwrap(), robot.pose().unwrap());
+    assert_eq!(poses[1][2], robot.link_pose(1, 2).unwrap());
+    assert_eq!(world.robot(1).err().unwrap().status, Status::OutOfRange);
+    assert_eq!(world.body(-1).err().unwrap().status, Status::OutOfRange);
 }
