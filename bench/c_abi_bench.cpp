@@ -53,7 +53,7 @@ Fixture& fixture() {
     Fixture f;
     const fs::path file = sharedDir() / "graspit-data/worlds/plannerMug.xml";
     if (!fs::exists(file)) return f;
-    setWarningHandler([](const SourceLocation&, const std::string&) {});
+    setWarningHandler([](const Warning&) {});
     if (graspkit_world_load(file.c_str(), nullptr, &f.cWorld) != GRASPKIT_OK) return f;
     if (graspkit_ray_scene_new(f.cWorld, 0, &f.cScene) != GRASPKIT_OK) return f;
     f.world = loadWorldFile(file);

@@ -47,7 +47,7 @@ fs::path sharedDir() {
 // The scene, loaded once; nullopt when the shared data is missing.
 const std::optional<World>& scene() {
   static const std::optional<World> world = []() -> std::optional<World> {
-    setWarningHandler([](const SourceLocation&, const std::string&) {});
+    setWarningHandler([](const Warning&) {});
     const fs::path data = sharedDir() / "graspit-data";
     if (!fs::exists(data / "worlds/plannerMug.xml")) return std::nullopt;
     World w = loadWorldFile(data / "worlds/plannerMug.xml", LoadOptions{{data}});

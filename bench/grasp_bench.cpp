@@ -33,7 +33,7 @@ fs::path sharedDir() {
 
 // plannerMug as loaded; with `at_grasp`, the hand at GraspIt!'s autograsp result.
 std::optional<World> plannerMug(bool at_grasp) {
-  setWarningHandler([](const SourceLocation&, const std::string&) {});
+  setWarningHandler([](const Warning&) {});
   const fs::path file = sharedDir() / "graspit-data/worlds/plannerMug.xml";
   if (!fs::exists(file)) return std::nullopt;
   World world = loadWorldFile(file);

@@ -53,7 +53,7 @@ std::vector<Problem> problems(Robot& robot, int chain) {
 
 template <class Solver>
 void runSolves(benchmark::State& state, const std::string& file, int chain, Solver solve) {
-  setWarningHandler([](const SourceLocation&, const std::string&) {});
+  setWarningHandler([](const Warning&) {});
   if (!fs::exists(robotsDir() / file)) return state.SkipWithError("shared GraspIt! data not found");
   Robot robot(loadRobotFile(robotsDir() / file));
   const std::vector<Problem> all = problems(robot, chain);

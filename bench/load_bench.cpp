@@ -36,7 +36,7 @@ std::size_t robotBytes(const RobotModel& robot) {
 }
 
 void quiet() {
-  setWarningHandler([](const SourceLocation&, const std::string&) {});
+  setWarningHandler([](const Warning&) {});
 }
 
 void BM_LoadWorld(benchmark::State& state, std::string file, double graspit_seconds) {

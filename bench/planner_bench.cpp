@@ -39,7 +39,7 @@ constexpr double kGraspItAutograspQualityStepsPerSecond = 100.0;
 
 std::shared_ptr<const World> plannerMug() {
   static std::shared_ptr<const World> world = [] {
-    setWarningHandler([](const SourceLocation&, const std::string&) {});
+    setWarningHandler([](const Warning&) {});
     const char* env = std::getenv("GRASPKIT_SHARED");
     const fs::path shared = env && *env ? fs::path(env) : fs::path(GRASPKIT_SHARED_DEFAULT);
     const fs::path file = shared / "graspit-data/worlds/plannerMug.xml";

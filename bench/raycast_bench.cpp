@@ -246,7 +246,7 @@ double bestSecondsPer(std::size_t count, Function run) {
 Fixture& fixture() {
   static Fixture f = [] {
     Fixture f;
-    setWarningHandler([](const SourceLocation&, const std::string&) {});
+    setWarningHandler([](const Warning&) {});
     const fs::path data = sharedDir() / "graspit-data";
     if (!fs::exists(data / "worlds/plannerMug.xml")) return f;
     f.world = loadWorldFile(data / "worlds/plannerMug.xml", LoadOptions{{data}});

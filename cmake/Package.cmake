@@ -30,3 +30,10 @@ install(CODE "
     file(WRITE \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig/\${pc}.pc\" \"\${text}\")
   endforeach()
 ")
+
+# The project's models, docs and examples in <datadir>/graspkit, laid out as in the checkout
+# (examples/ beside models/), so that the examples run from an install as the README shows them
+# and an installed graspkit defaults its model root to share/graspkit/models.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/models ${PROJECT_SOURCE_DIR}/docs ${PROJECT_SOURCE_DIR}/examples
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/graspkit)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/graspkit)

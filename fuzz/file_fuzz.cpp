@@ -81,7 +81,7 @@ void read(const fs::path& file) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
-  graspkit::setWarningHandler([](const graspkit::SourceLocation&, const std::string&) {});
+  graspkit::setWarningHandler([](const graspkit::Warning&) {});
   return 0;
 }
 

@@ -18,12 +18,15 @@ class World;
 
 namespace graspkit::cli {
 
+// The check of a file argument: "no such file: NAME" or "NAME is a folder, not a file".
+CLI::Validator existingFile();
+
 struct InfoOptions {
   std::filesystem::path file;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
-  std::string dofs;  // comma-separated DOF values
-  int robot = 0;
+  std::string dofs;   // comma-separated DOF values
+  std::string robot;  // name or 0-based index; the first robot when empty
   bool json = false;
 };
 
@@ -34,19 +37,23 @@ struct GraspOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
-  std::optional<int> robot;  // the world's first hand when unset
-  std::string object;        // body name; the first graspable body when empty
-  std::string pose;          // tx,ty,tz,qw,qx,qy,qz (mm, world)
-  std::string dofs;          // comma-separated DOF values
+  std::string robot;   // name or 0-based index; the world's first hand when empty
+  std::string object;  // body name; the first graspable body when empty
+  std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
+  std::string dofs;    // comma-separated DOF values
   bool autograsp = false;
   std::string gws = "L1";
   bool json = false;
 };
 
 void addGraspCommand(CLI::App& app, GraspOptions& options);
-// The robot grasp and plan work on: --robot when given (range-checked), else the world's first
-// hand, as GraspIt! picks its current hand. Throws graspkit::Error when there is none.
-int chooseHand(const World& world, const std::optional<int>& robot);
+// --robot names a robot by its name or its 0-based index (as the JSON lists robots and the C ABI
+// counts them; Lua counts from 1, as Lua does). Throws graspkit::Error naming the world's robots
+// when there is no such robot.
+int robotByNameOrIndex(const World& world, const std::string& robot);
+// The robot grasp and plan work on: --robot when given, else the world's first hand, as
+// GraspIt! picks its current hand. Throws graspkit::Error when there is none.
+int chooseHand(const World& world, const std::string& robot);
 int runGrasp(const GraspOptions& options, std::ostream& out);
 
 struct PluginsOptions {
@@ -99,8 +106,8 @@ struct PlanOptions {
   std::filesystem::path world;
   std::vector<std::filesystem::path> roots;
   bool genericRobots = false;
-  std::optional<int> robot;  // the world's first hand when unset
-  std::string object;        // the first graspable body when empty
+  std::string robot;   // name or 0-based index; the world's first hand when empty
+  std::string object;  // the first graspable body when empty
   std::string planner = "simann";
   std::string energy = "contact";
   std::string space = "axis-angle";
@@ -123,7 +130,9 @@ void addPlanCommand(CLI::App& app, PlanOptions& options);
 // terminal, a plain line every few seconds otherwise (unless quiet).
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out);
 
-// The options every command that loads files shares: --root and --generic-robots.
+// The options every command that loads files shares: --root and --generic-robots. With no
+// --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own models,
+// <prefix>/share/graspkit/models.
 void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
                   bool& generic_robots);
 

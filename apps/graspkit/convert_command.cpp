@@ -58,7 +58,7 @@ void addConvertCommand(CLI::App& app, ConvertOptions& options) {
       "Turn a legacy .egr or .vgr file into its XML form, or a mesh into a Body XML beside it");
   cmd->add_option("input", options.input, ".egr, .vgr or mesh file")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(existingFile());
   cmd->add_option("-o,--out", options.out, "Where to write (default: beside the input, .xml)");
   cmd->add_flag("--force", options.force, "Replace an existing file that differs");
   cmd->add_option("--material", options.material, "Mesh: the body's material")

@@ -1,10 +1,11 @@
 // graspkit grasp: place a hand, optionally close it, and report its contacts and grasp quality.
 
 #include <algorithm>
+#include <charconv>
 #include <optional>
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
+#include <fmt/ranges.h>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/io/world_file.hpp"
+#include "graspkit/log.hpp"
 #include "graspkit/world.hpp"
 
 namespace graspkit::cli {
@@ -80,10 +82,11 @@ json handCollisions(const World& world, int robot) {
     pairs.push_back({{"link", bodyName(world, link)}, {"body", bodyName(world, other)}});
   }
   if (!pairs.empty()) {
-    spdlog::warn(
-        "the hand starts in collision ({} with {}{}): intersecting surfaces give no contacts",
-        pairs[0]["link"].get<std::string>(), pairs[0]["body"].get<std::string>(),
-        pairs.size() > 1 ? fmt::format(", and {} more pairs", pairs.size() - 1) : "");
+    warn(WarningKind::Collision, SourceLocation{},
+         fmt::format(
+             "the hand starts in collision ({} with {}{}): intersecting surfaces give no contacts",
+             pairs[0]["link"].get<std::string>(), pairs[0]["body"].get<std::string>(),
+             pairs.size() > 1 ? fmt::format(", and {} more pairs", pairs.size() - 1) : ""));
   }
   return pairs;
 }
@@ -159,11 +162,24 @@ void printText(const json& j, std::ostream& out) {
 
 }  // namespace
 
-int chooseHand(const World& world, const std::optional<int>& robot) {
-  if (robot) {
-    world.robot(*robot);  // range check with a clear message
-    return *robot;
-  }
+int robotByNameOrIndex(const World& world, const std::string& robot) {
+  if (const auto found = world.findRobot(robot)) return *found;
+  std::vector<std::string> names;
+  for (int r = 0; r < world.robotCount(); ++r) names.push_back(world.robot(r).name());
+  const std::string known = names.empty() ? "the world has no robot"
+                                          : fmt::format("its robots are {} (0-based: 0..{})",
+                                                        fmt::join(names, ", "), names.size() - 1);
+  int index = -1;
+  const auto [end, ec] = std::from_chars(robot.data(), robot.data() + robot.size(), index);
+  if (ec != std::errc{} || end != robot.data() + robot.size())
+    throw Error(fmt::format("--robot '{}': no robot of that name; {}", robot, known));
+  if (index < 0 || index >= world.robotCount())
+    throw Error(fmt::format("--robot {}: no robot with that index; {}", robot, known));
+  return index;
+}
+
+int chooseHand(const World& world, const std::string& robot) {
+  if (!robot.empty()) return robotByNameOrIndex(world, robot);
   if (const auto hand = world.firstHand()) return *hand;
   throw Error(world.robotCount() == 0
                   ? "the world has no robot to grasp with"
@@ -173,10 +189,10 @@ int chooseHand(const World& world, const std::optional<int>& robot) {
 void addGraspCommand(CLI::App& app, GraspOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("grasp", "Place a hand, optionally close it, report contacts and quality");
-  cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
+  cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
   addLoadFlags(*cmd, options.roots, options.genericRobots);
   cmd->add_option("--robot", options.robot,
-                  "Which robot is the hand (0-based; default: the world's first hand)");
+                  "The hand: a robot's name or 0-based index (default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--pose", options.pose, "Hand pose in the world: tx,ty,tz,qw,qx,qy,qz (mm)");
   cmd->add_option("--dofs", options.dofs, "DOF values, comma-separated (rad or mm)");

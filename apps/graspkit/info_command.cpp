@@ -155,10 +155,10 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
   CLI::App* cmd = app.add_subcommand("info", "Describe a body, robot or world file");
   cmd->add_option("file", options.file, "Body, robot or world XML (or a mesh file)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(existingFile());
   cmd->add_option("--dofs", options.dofs, "DOF values to set, comma-separated (rad or mm)");
-  cmd->add_option("--robot", options.robot, "Which robot --dofs applies to (0-based)")
-      ->default_val(0);
+  cmd->add_option("--robot", options.robot,
+                  "Which robot --dofs applies to: a name or 0-based index (default: the first)");
   addLoadFlags(*cmd, options.roots, options.genericRobots);
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
@@ -167,10 +167,12 @@ int runInfo(const InfoOptions& options, std::ostream& out) {
   World world = loadAnyFile(
       options.file,
       LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
-  // --robot is checked even without --dofs: a wrong index must not pass unnoticed.
-  if (world.robotCount() > 0 || options.robot != 0) world.robot(options.robot);
-  if (!options.dofs.empty())
-    world.setDofValues(options.robot, parseNumberList(options.dofs, "--dofs"));
+  // --robot is checked even without --dofs: a wrong name or index must not pass unnoticed.
+  const int robot = options.robot.empty() ? 0 : robotByNameOrIndex(world, options.robot);
+  if (!options.dofs.empty()) {
+    if (world.robotCount() == 0) throw Error("--dofs: the file has no robot");
+    world.setDofValues(robot, parseNumberList(options.dofs, "--dofs"));
+  }
   json j = worldJson(world);
   j["file"] = options.file.string();
   if (options.json) {

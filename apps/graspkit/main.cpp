@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -13,67 +15,125 @@
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/log.hpp"
 #include "graspkit/version.hpp"
+#include "warning_reporter.hpp"
+
+namespace {
+
+// What every exit status means; --help prints it, the README repeats it.
+constexpr const char* kExitStatuses =
+    "Exit status:\n"
+    "  0    success\n"
+    "  1    failure: bad input (the message names file, line and element), a failed save, a\n"
+    "       failing test, a plugin that does not load, a Lua error\n"
+    "  2    usage: an unknown option, a missing or invalid argument, a file named on the\n"
+    "       command line that does not exist\n"
+    "  3    internal error (a bug: please report it)\n"
+    "  124  a script stopped by --timeout\n"
+    "  run: a script's os.exit(n) exits with n";
+
+constexpr int kUsageStatus = 2;
+constexpr int kInternalStatus = 3;
+
+// CLI11's own messages are kept; they get the program's prefix and its exit status for usage
+// errors (CLI11 would exit with its internal codes, 105-109).
+int usageError(const CLI::App& app, const CLI::ParseError& e) {
+  if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+  std::cerr << "graspkit: error: " << e.what() << "\n"
+            << "Run 'graspkit --help' or 'graspkit COMMAND --help' for the usage.\n";
+  return kUsageStatus;
+}
+
+// Each subcommand's options, filled by the parser.
+struct CommandOptions {
+  graspkit::cli::InfoOptions info;
+  graspkit::cli::GraspOptions grasp;
+  graspkit::cli::PluginsOptions plugins;
+  graspkit::cli::RunOptions run;
+  graspkit::cli::TestOptions test;
+  graspkit::cli::PlanOptions plan;
+  graspkit::cli::ConvertOptions convert;
+};
+
+int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
+  using namespace graspkit::cli;
+  try {
+    if (app.got_subcommand("info")) return runInfo(o.info, std::cout);
+    if (app.got_subcommand("grasp")) return runGrasp(o.grasp, std::cout);
+    if (app.got_subcommand("plugins")) return runPlugins(o.plugins, std::cout);
+    if (app.got_subcommand("run")) return runRun(o.run, quiet);
+    if (app.got_subcommand("test")) return runTest(o.test, quiet, verbose, std::cout);
+    if (app.got_subcommand("plan")) return runPlan(o.plan, quiet, std::cout);
+    if (app.got_subcommand("convert")) return runConvert(o.convert, quiet, std::cout);
+  } catch (const graspkit::Error& e) {
+    std::cerr << "graspkit: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "graspkit: internal error: " << e.what() << "\n";
+    return kInternalStatus;
+  } catch (...) {
+    std::cerr << "graspkit: internal error: an exception that is not a std::exception (from a "
+                 "plugin's code?)\n";
+    return kInternalStatus;
+  }
+  return 0;
+}
+
+std::set<graspkit::WarningKind> silencedKinds(const std::vector<std::string>& names) {
+  std::set<graspkit::WarningKind> kinds;
+  for (const std::string& name : names) kinds.insert(*graspkit::warningKindFromName(name));
+  return kinds;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"graspkit: a grasp simulator that reads GraspIt! files"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("graspkit ") + graspkit::engineVersion(),
                        "Print the version and exit");
-  app.fallthrough();  // --quiet and --verbose also after the subcommand
+  app.footer(kExitStatuses);
+  app.fallthrough();  // --quiet, --verbose and --no-warn also after the subcommand
   bool quiet = false;
   bool verbose = false;
+  std::vector<std::string> no_warn;
   app.add_flag("-q,--quiet", quiet, "Print errors only");
-  app.add_flag("-v,--verbose", verbose, "Print debugging detail");
+  app.add_flag("-v,--verbose", verbose, "Print debugging detail and every repeated warning");
+  std::vector<std::string> kind_names;
+  for (graspkit::WarningKind kind : graspkit::kWarningKinds)
+    kind_names.emplace_back(graspkit::warningKindName(kind));
+  app.add_option("--no-warn", no_warn, "Hide one kind of warning (repeatable)")
+      ->check(CLI::IsMember(kind_names))
+      ->type_name("KIND");
 
-  graspkit::cli::InfoOptions info;
-  graspkit::cli::addInfoCommand(app, info);
-  graspkit::cli::GraspOptions grasp;
-  graspkit::cli::addGraspCommand(app, grasp);
-  graspkit::cli::PluginsOptions plugins;
-  graspkit::cli::addPluginsCommand(app, plugins);
-  graspkit::cli::RunOptions run;
-  graspkit::cli::addRunCommand(app, run);
-  graspkit::cli::TestOptions test;
-  graspkit::cli::addTestCommand(app, test);
-  graspkit::cli::PlanOptions plan;
-  graspkit::cli::addPlanCommand(app, plan);
-  graspkit::cli::ConvertOptions convert;
-  graspkit::cli::addConvertCommand(app, convert);
+  CommandOptions options;
+  graspkit::cli::addInfoCommand(app, options.info);
+  graspkit::cli::addGraspCommand(app, options.grasp);
+  graspkit::cli::addPluginsCommand(app, options.plugins);
+  graspkit::cli::addRunCommand(app, options.run);
+  graspkit::cli::addTestCommand(app, options.test);
+  graspkit::cli::addPlanCommand(app, options.plan);
+  graspkit::cli::addConvertCommand(app, options.convert);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return usageError(app, e);
   }
-  // Warnings and errors go to stderr, so --json output on stdout stays parseable.
+  // Errors, warnings and traces go to stderr, so --json output on stdout stays parseable.
   spdlog::set_default_logger(spdlog::stderr_color_mt("graspkit"));
   spdlog::set_level(quiet     ? spdlog::level::err
                     : verbose ? spdlog::level::debug
                               : spdlog::level::warn);
   spdlog::set_pattern("graspkit: %l: %v");
-  int status = 0;
-  try {
-    if (app.got_subcommand("info")) status = graspkit::cli::runInfo(info, std::cout);
-    if (app.got_subcommand("grasp")) status = graspkit::cli::runGrasp(grasp, std::cout);
-    if (app.got_subcommand("plugins")) status = graspkit::cli::runPlugins(plugins, std::cout);
-    if (app.got_subcommand("run")) status = graspkit::cli::runRun(run, quiet);
-    if (app.got_subcommand("test"))
-      status = graspkit::cli::runTest(test, quiet, verbose, std::cout);
-    if (app.got_subcommand("plan")) status = graspkit::cli::runPlan(plan, quiet, std::cout);
-    if (app.got_subcommand("convert"))
-      status = graspkit::cli::runConvert(convert, quiet, std::cout);
-  } catch (const graspkit::Error& e) {
-    std::cerr << "graspkit: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "graspkit: internal error: " << e.what() << "\n";
-    return 2;
-  } catch (...) {
-    std::cerr << "graspkit: internal error: an exception that is not a std::exception (from a "
-                 "plugin's code?)\n";
-    return 2;
-  }
+  graspkit::cli::WarningReporter warnings(
+      {.quiet = quiet, .silenced = silencedKinds(no_warn), .shownRepeats = verbose ? 0 : 3},
+      std::cerr);
+  graspkit::setWarningHandler([&warnings](const graspkit::Warning& w) { warnings.report(w); });
+  const int status = runCommand(app, options, quiet, verbose);
+  graspkit::setWarningHandler({});
+  warnings.summarize();
   // Output that never reached its reader (a full disk, a closed pipe) is a failure, not a 0.
   std::cout.flush();
   if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {

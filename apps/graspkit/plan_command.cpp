@@ -1,8 +1,6 @@
 // graspkit plan: run a grasp planner on a world and print (or save) the best grasps, each closed
 // with autograsp and measured.
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -22,6 +20,7 @@
 #include "graspkit/version.hpp"
 #include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
+#include "progress_reporter.hpp"
 
 namespace graspkit::cli {
 namespace {
@@ -197,34 +196,15 @@ std::string progressText(const PlannerProgress& p) {
   return text;
 }
 
-// On a terminal: one line redrawn about 4 times a second. Otherwise (a CI log): a plain line
-// every 5 seconds and one at the end.
-std::function<bool(const PlannerProgress&)> planProgress(bool quiet, double& reportEvery) {
-  if (quiet) return {};
-  if (isatty(STDERR_FILENO)) {
-    reportEvery = 0.25;
-    return [](const PlannerProgress& p) {
-      std::cerr << "\r  " << fmt::format("{:<78}", progressText(p)) << std::flush;
-      if (p.fraction >= 1.0) std::cerr << "\n";
-      return true;
-    };
-  }
-  reportEvery = 5.0;
-  return [](const PlannerProgress& p) {
-    std::cerr << "plan: " << progressText(p) << "\n" << std::flush;
-    return true;
-  };
-}
-
 }  // namespace
 
 void addPlanCommand(CLI::App& app, PlanOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan grasps with a planner plugin and print the best, each closed and measured");
-  cmd->add_option("world", options.world, "World XML")->required()->check(CLI::ExistingFile);
+  cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
   addLoadFlags(*cmd, options.roots, options.genericRobots);
   cmd->add_option("--robot", options.robot,
-                  "Which robot is the hand (0-based; default: the world's first hand)");
+                  "The hand: a robot's name or 0-based index (default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--planner", options.planner, "Planner: simann, list, approach or a plugin's")
       ->default_val("simann");
@@ -304,8 +284,16 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
     budget.seconds = *options.seconds;
   else
     budget.steps = options.steps.value_or(kDefaultSteps);
-  budget.progress = planProgress(quiet, budget.reportEvery);
+  ProgressReporter progress(ProgressReporter::forStderr(quiet));
+  budget.progress = [&progress](const PlannerProgress& p) {
+    if (p.fraction >= 1.0)
+      progress.finish(p.fraction, progressText(p));
+    else
+      progress.update(p.fraction, progressText(p));
+    return true;
+  };
   PlanningRun run = runPlanner(*planner, budget);
+  progress.clear();
   finishGrasps(request, run.grasps, request.threads);
 
   const Body& object = world->bodies()[static_cast<std::size_t>(request.object.index)];

@@ -93,12 +93,4 @@ int runPlugins(const PluginsOptions& options, std::ostream& out) {
   return 0;
 }
 
-void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
-                  bool& generic_robots) {
-  command.add_option("--root", roots, "Folder that world <filename> paths are relative to")
-      ->allow_extra_args(false);
-  command.add_flag("--generic-robots", generic_robots,
-                   "Load a robot whose type no plugin provides as a generic Hand (with a warning)");
-}
-
 }  // namespace graspkit::cli

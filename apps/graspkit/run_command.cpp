@@ -6,15 +6,14 @@
 
 #include "commands.hpp"
 #include "graspkit/lua/script_host.hpp"
+#include "progress_reporter.hpp"
 
 namespace graspkit::cli {
 
 void addRunCommand(CLI::App& app, RunOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("run", "Run a Lua scenario script (arguments after -- go to arg)");
-  cmd->add_option("script", options.script, "The .lua script")
-      ->required()
-      ->check(CLI::ExistingFile);
+  cmd->add_option("script", options.script, "The .lua script")->required()->check(existingFile());
   cmd->add_option("args", options.args, "Arguments for the script, after --");
   cmd->add_flag("--json", options.json,
                 "Print the value the script returns as JSON (print() then goes to stderr)");
@@ -22,7 +21,14 @@ void addRunCommand(CLI::App& app, RunOptions& options) {
 }
 
 int runRun(const RunOptions& options, bool quiet) {
-  lua::ScriptOptions script_options = scriptOptions(options.flags, quiet);
+  ProgressReporter progress(ProgressReporter::forStderr(quiet));
+  lua::ScriptOptions script_options = scriptOptions(options.flags);
+  script_options.progress = [&progress](double fraction, const std::string& text) {
+    if (fraction >= 1.0)
+      progress.finish(fraction, text);
+    else
+      progress.update(fraction, text);
+  };
   script_options.args = options.args;
   script_options.printToStderr = options.json;  // stdout carries the JSON value only
   lua::ScriptHost host(options.script, std::move(script_options));

@@ -29,7 +29,7 @@ void addScriptFlags(CLI::App& command, ScriptFlags& flags) {
   addLoadFlags(command, flags.roots, flags.genericRobots);
 }
 
-lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet) {
+lua::ScriptOptions scriptOptions(const ScriptFlags& flags) {
   lua::ScriptOptions options;
   options.sandbox.unsafe = flags.unsafe;
   options.sandbox.allowRead = flags.allowRead;
@@ -39,7 +39,6 @@ lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet) {
   options.exitProcessWhenStuck = true;  // --timeout is a promise to the user: keep it
   options.load.roots = flags.roots;
   options.load.genericRobotFallback = flags.genericRobots;
-  options.showProgress = !quiet && isatty(STDERR_FILENO) != 0;
   return options;
 }
 

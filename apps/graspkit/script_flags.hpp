@@ -24,8 +24,8 @@ struct ScriptFlags {
 
 void addScriptFlags(CLI::App& command, ScriptFlags& flags);
 
-// The host options for these flags; progress shows when stderr is a terminal and not --quiet.
-lua::ScriptOptions scriptOptions(const ScriptFlags& flags, bool quiet);
+// The host options for these flags (the caller connects the progress reporter).
+lua::ScriptOptions scriptOptions(const ScriptFlags& flags);
 
 // Exit status for a script that timed out, as timeout(1) uses.
 inline constexpr int kTimedOutStatus = 124;

@@ -1,7 +1,6 @@
 // graspkit test: run Lua scenario tests (*_test.lua) and report per test (see docs/lua.md).
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
@@ -11,8 +10,10 @@
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/log.hpp"
 #include "graspkit/lua/junit_report.hpp"
 #include "graspkit/lua/test_runner.hpp"
+#include "progress_reporter.hpp"
 
 namespace graspkit::cli {
 namespace {
@@ -103,32 +104,6 @@ json reportJson(const lua::TestReport& report) {
           {"skipped", report.count(TestStatus::Skipped)}};
 }
 
-// A one-line "running file: test" on stderr, replaced by the next and erased at the end.
-class ProgressLine {
- public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled) {}
-  ~ProgressLine() { clear(); }
-  ProgressLine(const ProgressLine&) = delete;
-  ProgressLine& operator=(const ProgressLine&) = delete;
-
-  void show(int done, const std::string& file, const std::string& test) {
-    if (!enabled_) return;
-    std::fprintf(stderr, "\r\033[K[%d done] %s: %s", done, file.c_str(), test.c_str());
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void clear() {
-    if (!shown_) return;
-    std::fputs("\r\033[K", stderr);
-    std::fflush(stderr);
-    shown_ = false;
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-};
-
 // A --junit file in a folder that does not exist fails now, not after the tests ran.
 void checkReportFolder(const std::filesystem::path& file) {
   if (file.empty()) return;
@@ -156,13 +131,17 @@ int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& 
   checkReportFolder(options.junit);
 
   lua::TestRunOptions run;
-  run.script = scriptOptions(options.flags, quiet);
+  run.script = scriptOptions(options.flags);
   run.script.printToStderr = options.json;
   // In text mode on a terminal the result lines themselves show the progress.
-  ProgressLine progress(run.script.showProgress && (options.json || isatty(STDOUT_FILENO) == 0));
+  const bool show_progress = options.json || isatty(STDOUT_FILENO) == 0;
+  ProgressReporter progress(ProgressReporter::forStderr(quiet || !show_progress));
+  run.script.progress = [&progress](double fraction, const std::string& text) {
+    progress.update(fraction, text);
+  };
   int done = 0;
   run.onStart = [&](const std::string& file, const std::string& test) {
-    progress.show(done, file, test);
+    progress.update(-1.0, fmt::format("{} done, running {}: {}", done, file, test));
     if (verbose && !options.json) {
       out << fmt::format("RUN   {}: {}", file, test) << std::endl;
     }
@@ -180,7 +159,8 @@ int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& 
   const lua::TestReport report = lua::runTests(files, run);
   progress.clear();
   for (const lua::TestFileResult& file : report.files) {
-    if (file.tests.empty()) spdlog::warn("{}: defines no tests", file.file);
+    if (file.tests.empty())
+      warn(WarningKind::Script, SourceLocation{file.file}, "defines no tests");
   }
   if (report.total() == 0) {
     std::cerr << "graspkit: error: no tests found in the test files (define them with "

@@ -1,7 +1,6 @@
 #include "module.hpp"
 
-#include <unistd.h>
-#include <cstdio>
+#include <algorithm>
 
 #include "graspkit/version.hpp"
 #include "lua_api.hpp"
@@ -15,27 +14,21 @@ int version(lua_State* L) {
   return 1;
 }
 
-// graspkit.progress(done, total [, label]): a one-line bar on stderr when it is a terminal
-// (and --quiet is off); nothing otherwise, so scripts can call it freely in CI.
+// graspkit.progress(done, total [, label]): reported to the host (ScriptOptions::progress), which
+// draws it; the command line shows it as it shows every command's progress.
 int progress(lua_State* L) {
   const double done = toNumber(L, 1);
   const double total = toNumber(L, 2);
   const std::string label = isNone(L, 3) ? "" : toString(L, 3);
-  drawProgress(L, done, total, label);
+  reportProgress(L, total > 0 ? done / total : 1.0, label);
   return 0;
 }
 
 }  // namespace
 
-void drawProgress(lua_State* L, double done, double total, const std::string& label) {
-  if (!scriptContext(L).options.showProgress || isatty(STDERR_FILENO) == 0) return;
-  const double fraction = total > 0 ? std::min(1.0, std::max(0.0, done / total)) : 1.0;
-  const int width = 30;
-  const int filled = static_cast<int>(fraction * width + 0.5);
-  std::fprintf(stderr, "\r[%-*s] %3.0f%% %s", width, std::string(filled, '#').c_str(),
-               fraction * 100.0, label.c_str());
-  if (done >= total) std::fputc('\n', stderr);
-  std::fflush(stderr);
+void reportProgress(lua_State* L, double fraction, const std::string& text) {
+  const auto& progress = scriptContext(L).options.progress;
+  if (progress) progress(std::clamp(fraction, 0.0, 1.0), text);
 }
 
 int openGraspkitModule(lua_State* L) {

@@ -20,8 +20,8 @@ void registerBodyClass(lua_State* L);     // body_binding.cpp
 void registerRobotClass(lua_State* L);    // robot_binding.cpp
 void registerGraspClass(lua_State* L);    // grasp_binding.cpp
 
-// graspkit.progress's bar on stderr: drawn only when the host shows progress (--quiet off) and
-// stderr is a terminal. `done` >= `total` ends the line.
-void drawProgress(lua_State* L, double done, double total, const std::string& label);
+// Hands progress to the host's ScriptOptions::progress, if it set one: `fraction` done (clamped
+// to 0..1; 1 ends the task) and a line of text.
+void reportProgress(lua_State* L, double fraction, const std::string& text);
 
 }  // namespace graspkit::lua

@@ -424,9 +424,8 @@ int run(lua_State* L) {
     checkTimeLimit(L);
     const double done = budget.steps ? static_cast<double>(p.steps - first) : p.seconds;
     const double total = budget.steps ? static_cast<double>(*budget.steps) : *budget.seconds;
-    drawProgress(L, std::min(done, total * 0.999), total,
-                 fmt::format("{:<40}", fmt::format("{} steps, best energy {:.5g}", p.steps - first,
-                                                   p.bestEnergy)));
+    reportProgress(L, total > 0 ? std::min(done / total, 0.999) : 0.0,
+                   fmt::format("{} steps, best energy {:.5g}", p.steps - first, p.bestEnergy));
     return true;
   };
   PlanningRun result;
@@ -434,9 +433,7 @@ int run(lua_State* L) {
     PlannerCall call(L, bound);
     result = runPlanner(*bound.planner, budget);
   }
-  drawProgress(
-      L, 1.0, 1.0,
-      fmt::format("{:<40}", fmt::format("{} steps in {:.2f} s", result.steps, result.seconds)));
+  reportProgress(L, 1.0, fmt::format("{} steps in {:.2f} s", result.steps, result.seconds));
   lua_pushinteger(L, result.steps);
   lua_pushnumber(L, result.seconds);
   return 2;

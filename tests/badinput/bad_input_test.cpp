@@ -225,8 +225,9 @@ struct Warnings {
   std::vector<std::string> texts;
   WarningHandler previous;
   Warnings()
-      : previous(setWarningHandler([this](const SourceLocation& where, const std::string& text) {
-          texts.push_back(where.str() + ": " + text);
+      : previous(setWarningHandler([this](const Warning& w) {
+          // The kind last: "file:line: message [kind]".
+          texts.push_back(describe(w) + " [" + std::string(warningKindName(w.kind)) + "]");
         })) {}
   ~Warnings() { setWarningHandler(previous); }
   bool has(const std::string& part) const {
@@ -253,6 +254,7 @@ TEST(GraspItLeniency, ReversedJointLimitsAreSwapped) {
   const auto hand =
       loadRobotFile(editedHand("reversed.xml", "<minValue>-90</minValue><maxValue>90</maxValue>",
                                "<minValue>60</minValue><maxValue>-30</maxValue>"));
+  EXPECT_TRUE(warnings.has("the limits are swapped, as GraspIt! does [robot]"));
   EXPECT_TRUE(warnings.has("reversed.xml:8: <joint>: minValue 60 is greater than maxValue -30"))
       << ::testing::PrintToString(warnings.texts);
   EXPECT_NEAR(hand->dofs[0].min, -30 * M_PI / 180, 1e-12);
@@ -267,6 +269,7 @@ TEST(GraspItLeniency, EigengraspFileOfOtherDimensionsUsesWhatFits) {
                    "has 2 DOFs"))
       << ::testing::PrintToString(warnings.texts);
   EXPECT_TRUE(warnings.has("eigen_wrong_dims.xml:5: <DimVals>: attribute 'd2' does not name"));
+  EXPECT_TRUE(warnings.has("the values for d0..d1 are used [eigengrasp]"));
   EXPECT_FALSE(hand->eigengrasps.identity);
   ASSERT_EQ(hand->eigengrasps.grasps.size(), 1u);
   EXPECT_EQ(hand->eigengrasps.grasps[0].direction, Eigen::Vector2d(1, 0));

@@ -192,15 +192,16 @@ namespace {
 
 struct Captured {
   int calls = 0;
-  std::string file, element, message;
+  std::string kind, file, element, message;
   int line = 0;
 };
 
-void capture(graspkit_log_level level, const char* file, int line, const char* element,
-             const char* message, void* user) {
+void capture(graspkit_log_level level, const char* kind, const char* file, int line,
+             const char* element, const char* message, void* user) {
   auto* c = static_cast<Captured*>(user);
   EXPECT_EQ(level, GRASPKIT_LOG_WARNING);
   ++c->calls;
+  c->kind = kind;
   c->file = file;
   c->line = line;
   c->element = element;
@@ -230,6 +231,7 @@ TEST(CAbi, WarningsReachTheCallbackAndNeverStdout) {
   EXPECT_NE(captured.file.find("odd.xml"), std::string::npos);
   EXPECT_EQ(captured.line, 4);
   EXPECT_EQ(captured.element, "colour");
+  EXPECT_EQ(captured.kind, "unknown-element");
 
   // The default handler writes to stderr only: a host printing JSON on stdout stays clean.
   ASSERT_EQ(graspkit_set_log_callback(nullptr, nullptr), GRASPKIT_OK);

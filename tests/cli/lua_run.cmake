@@ -92,4 +92,4 @@ expect_in("${out}" "2\t1")
 run_script(1 ${dir}/scripts/world.lua)
 
 # A missing script is a usage error, not a crash.
-run_script(105 ${dir}/scripts/no_such_script.lua)
+run_script(2 ${dir}/scripts/no_such_script.lua)

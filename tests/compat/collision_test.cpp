@@ -16,7 +16,7 @@ namespace graspkit {
 namespace {
 
 World plannerMug() {
-  const auto previous = setWarningHandler([](const SourceLocation&, const std::string&) {});
+  const auto previous = setWarningHandler([](const Warning&) {});
   const auto data = *test::graspitDataDir();
   World world = loadWorldFile(data / "worlds" / "plannerMug.xml", LoadOptions{{data}});
   setWarningHandler(previous);

@@ -7,7 +7,7 @@
 namespace graspkit::test {
 
 struct QuietWarnings {
-  QuietWarnings() : previous(setWarningHandler([](const SourceLocation&, const std::string&) {})) {}
+  QuietWarnings() : previous(setWarningHandler([](const Warning&) {})) {}
   ~QuietWarnings() { setWarningHandler(previous); }
   QuietWarnings(const QuietWarnings&) = delete;
   QuietWarnings& operator=(const QuietWarnings&) = delete;

@@ -197,10 +197,10 @@ TEST(EmptyGeometry, LoadsEmptyWithAWarning) {
   for (const auto& [name, text] : files) {
     SCOPED_TRACE(name);
     std::vector<std::string> warnings;
-    const WarningHandler previous =
-        setWarningHandler([&](const SourceLocation& where, const std::string& message) {
-          warnings.push_back(where.str() + ": " + message);
-        });
+    const WarningHandler previous = setWarningHandler([&](const Warning& warning) {
+      EXPECT_EQ(warning.kind, WarningKind::Geometry);
+      warnings.push_back(describe(warning));
+    });
     const TriangleMesh mesh = loadMesh(writeFile(folder, name, text));
     setWarningHandler(previous);
     EXPECT_TRUE(mesh.triangles.empty());
@@ -585,10 +585,10 @@ TEST(InventorFileNodes, MissingIncludeWarnsAndIsSkipped) {
   const fs::path path = writeFile(test::scratchDir(), "missing.iv",
                                   "#Inventor V2.1 ascii\nCube { }\nFile { name \"nope.iv\" }\n");
   std::vector<std::string> warnings;
-  const WarningHandler previous =
-      setWarningHandler([&](const SourceLocation& where, const std::string& message) {
-        warnings.push_back(where.str() + ": " + message);
-      });
+  const WarningHandler previous = setWarningHandler([&](const Warning& warning) {
+    EXPECT_EQ(warning.kind, WarningKind::Geometry);
+    warnings.push_back(describe(warning));
+  });
   const TriangleMesh mesh = loadMesh(path);
   setWarningHandler(previous);
   EXPECT_EQ(mesh.triangles.size(), 12u);

@@ -74,9 +74,11 @@ GRASPKIT_C_API const char* graspkit_status_name(int32_t status);
 typedef enum graspkit_log_level { GRASPKIT_LOG_WARNING = 1 } graspkit_log_level;
 
 /* Receives every warning the engine gives (suspicious input that still loads). Called from the
- * thread that caused it; `file` and `element` are "" when unknown, `line` 0. */
-typedef void (*graspkit_log_fn)(graspkit_log_level level, const char* file, int line,
-                                const char* element, const char* message, void* user);
+ * thread that caused it. `kind` names what the warning is about, as `graspkit --no-warn` spells
+ * it: "unknown-element", "geometry", "mass", "robot", "eigengrasp", "virtual-contact", "plugin",
+ * "collision" or "script". `file` and `element` are "" when unknown, `line` 0. */
+typedef void (*graspkit_log_fn)(graspkit_log_level level, const char* kind, const char* file,
+                                int line, const char* element, const char* message, void* user);
 /* Installs `fn` (NULL restores the default: "graspkit: warning: ..." on stderr; the library
  * never writes to stdout). `user` is passed back to every call. */
 GRASPKIT_C_API graspkit_status graspkit_set_log_callback(graspkit_log_fn fn, void* user);

@@ -42,11 +42,11 @@ graspkit_status graspkit_set_log_callback(graspkit_log_fn fn, void* user) {
       graspkit::setWarningHandler({});
       return;
     }
-    graspkit::setWarningHandler(
-        [fn, user](const graspkit::SourceLocation& where, const std::string& message) {
-          fn(GRASPKIT_LOG_WARNING, where.file.c_str(), where.line, where.element.c_str(),
-             message.c_str(), user);
-        });
+    graspkit::setWarningHandler([fn, user](const graspkit::Warning& warning) {
+      const std::string kind(graspkit::warningKindName(warning.kind));
+      fn(GRASPKIT_LOG_WARNING, kind.c_str(), warning.where.file.c_str(), warning.where.line,
+         warning.where.element.c_str(), warning.message.c_str(), user);
+    });
   });
 }
 

@@ -3,20 +3,53 @@
 // They go through one replaceable handler, so a host application or a test can capture them;
 // the default handler prints them on stderr ("graspkit: warning: ..."), or through the spdlog
 // logger named "graspkit" when the program has registered one. The library never writes to stdout.
+// Each warning has a kind, so that a program can silence one kind and keep the others.
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "graspkit/error.hpp"
 
 namespace graspkit {
 
-using WarningHandler = std::function<void(const SourceLocation& where, const std::string& message)>;
+enum class WarningKind {
+  UnknownElement,  // a tag, attribute or transform element the reader does not know; ignored
+  Geometry,        // a mesh or Inventor file: no triangles, a missing File node, Coin's messages
+  Mass,            // mass properties that fall back (an inertia the mesh cannot give)
+  Robot,           // a robot file GraspIt! reads leniently (swapped limits, idle DOFs, ...)
+  Eigengrasp,      // an eigengrasp file that does not fit the robot
+  VirtualContact,  // a virtual-contact file that does not fit the robot
+  Plugin,          // a plugin that does not load, or a robot type no plugin provides
+  Collision,       // a hand that starts intersecting what it should grasp
+  Script,          // a Lua test file that defines no tests, and the like
+};
+
+// The kinds in declaration order, and their names as the command line spells them
+// ("unknown-element", "geometry", ...).
+inline constexpr WarningKind kWarningKinds[] = {
+    WarningKind::UnknownElement, WarningKind::Geometry,   WarningKind::Mass,
+    WarningKind::Robot,          WarningKind::Eigengrasp, WarningKind::VirtualContact,
+    WarningKind::Plugin,         WarningKind::Collision,  WarningKind::Script};
+std::string_view warningKindName(WarningKind kind);
+std::optional<WarningKind> warningKindFromName(std::string_view name);
+
+struct Warning {
+  WarningKind kind = WarningKind::UnknownElement;
+  SourceLocation where;  // empty when the warning is about no file
+  std::string message;
+};
+
+using WarningHandler = std::function<void(const Warning& warning)>;
 
 // Installs `handler` (an empty one restores the default) and returns the previous handler.
 WarningHandler setWarningHandler(WarningHandler handler);
 
-void warn(const SourceLocation& where, const std::string& message);
+void warn(WarningKind kind, const SourceLocation& where, const std::string& message);
+
+// "file:line: <element>: message" (or the message alone when there is no location).
+std::string describe(const Warning& warning);
 
 // A trace line for `graspkit -v` (spdlog's debug level), such as the plugin about to run: when
 // native code crashes the process, the last trace line says whose code it was.

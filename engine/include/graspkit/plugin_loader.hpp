@@ -5,10 +5,9 @@
 //
 // Search path, in order:
 //   1. GRASPKIT_PLUGIN_PATH (colon-separated folders);
-//   2. the plugin folder beside the engine library (<libdir>/graspkit/plugins) and beside the
-//      running program (<bindir>/../lib/graspkit/plugins), so a build tree and an install both
-//      work with no environment variable;
-//   3. the folder recorded when the engine was installed.
+//   2. the plugin folder beside the engine library (<libdir>/graspkit/plugins), so a build tree
+//      and an install (wherever its prefix) both work with no environment variable, and an
+//      install never picks up another install's plugins.
 // A plugin file is any regular `*.so` file in those folders (not their subfolders).
 //
 // Plugins are native code that runs as it loads. Before a plugin the loader has not seen enters

@@ -10,6 +10,7 @@
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/IOStream.hpp>  // complete, so that Close() runs its destructor
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 

@@ -76,7 +76,7 @@ void onCoinMessage(const SoError* error, void* /*data*/) {
   if (coin_messages != nullptr) {
     coin_messages->push_back(std::move(message));
   } else {
-    warn(detail::locationIn("Coin3D"), message);
+    warn(WarningKind::Geometry, detail::locationIn("Coin3D"), message);
   }
 }
 
@@ -664,7 +664,7 @@ SoSeparator* readSceneFile(const std::filesystem::path& path, SceneFiles& files,
         std::string searched;
         for (const auto& folder : folders)
           searched += (searched.empty() ? "" : ", ") + folder.string();
-        warn(locationIn(file, include.line),
+        warn(WarningKind::Geometry, locationIn(file, include.line),
              fmt::format("File node names '{}', which is in none of the folders searched ({}); "
                          "skipped, as Coin does",
                          include.name, searched));
@@ -715,7 +715,7 @@ TriangleMesh readInventor(const std::filesystem::path& path) {
   for (const std::string& message : messages) {
     std::string text_only;
     const SourceLocation at = coinLocation(file, {message}, text_only);
-    warn(at, text_only);
+    warn(WarningKind::Geometry, at, text_only);
   }
   TriangleMesh mesh;
   mesh.vertices = collector.welder.vertices();

@@ -79,7 +79,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path, MeshFormat format) {
   // GraspIt! loads such a body on purpose (DynamicBody::computeDefaultMassProp says "No
   // triangles found"): it never collides, its CoG is the origin and its radius 0.
   if (mesh.triangles.empty())
-    warn(SourceLocation{path.string()},
+    warn(WarningKind::Geometry, SourceLocation{path.string()},
          "the geometry holds no triangles: the body never collides or touches, its CoG is the "
          "origin and its radius 0");
   return mesh;

@@ -197,9 +197,10 @@ std::shared_ptr<const BodyModel> readBareGeometry(const fs::path& file) {
 
 void warnIfInertiaFallback(const BodyModel& body, const SourceLocation& where) {
   if (!body.inertiaFallback || body.inertiaFromFile) return;
-  warn(where, fmt::format("the inertia of '{}' cannot be computed from its mesh (GraspIt! fails "
-                          "too): the identity per unit mass is used; give <inertia_matrix> in {}",
-                          body.name, body.file.filename().string()));
+  warn(WarningKind::Mass, where,
+       fmt::format("the inertia of '{}' cannot be computed from its mesh (GraspIt! fails "
+                   "too): the identity per unit mass is used; give <inertia_matrix> in {}",
+                   body.name, body.file.filename().string()));
 }
 
 std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& options) {

@@ -32,7 +32,7 @@ Eigen::VectorXd dimVals(const fs::path& file, const XMLElement& element, int dof
     const std::string_view digits = name.substr(1);
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
     if (ec != std::errc() || index >= dofs) {
-      warn(xml::at(file, *dims),
+      warn(WarningKind::Eigengrasp, xml::at(file, *dims),
            fmt::format("attribute '{}' does not name one of the robot's {} DOFs (d0..d{}); skipped",
                        name, dofs, dofs - 1));
       continue;
@@ -77,7 +77,7 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
   const auto dims = xml::intAttribute(file, root, "dimensions");
   if (!dims || *dims != dof_count) {
     // GraspIt! reads such a file regardless; what fits the robot is used.
-    warn(xml::at(file, root),
+    warn(WarningKind::Eigengrasp, xml::at(file, root),
          fmt::format("dimensions is {}, the robot has {} DOFs; the values for d0..d{} are used",
                      dims ? std::to_string(*dims) : "missing", dof_count, dof_count - 1));
   }
@@ -88,7 +88,8 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
     grasp.direction = dimVals(file, *e, dof_count);
     const double norm = grasp.direction.norm();
     if (norm < 1e-12) {
-      warn(xml::at(file, *e), "eigengrasp is all zeros on the robot's DOFs; skipped");
+      warn(WarningKind::Eigengrasp, xml::at(file, *e),
+           "eigengrasp is all zeros on the robot's DOFs; skipped");
       continue;
     }
     grasp.direction /= norm;
@@ -104,7 +105,8 @@ EigengraspSet loadEigengraspFile(const fs::path& file, int dof_count) {
     set.grasps.push_back(std::move(grasp));
   }
   if (set.grasps.empty()) {
-    warn(xml::at(file, root), "no eigengrasp fits the robot; identity eigengrasps are used");
+    warn(WarningKind::Eigengrasp, xml::at(file, root),
+         "no eigengrasp fits the robot; identity eigengrasps are used");
     return identityEigengrasps(dof_count);
   }
   if (const auto* origin = xml::child(root, "ORIGIN"))

@@ -112,7 +112,7 @@ std::string eigengraspXmlFromEgr(const fs::path& egr) {
   while (!in.done()) {
     const std::string block = in.peek();
     if (block != "EG" && block != "ORIGIN" && block != "NORM") {
-      warn(SourceLocation{in.file(), in.line()},
+      warn(WarningKind::Eigengrasp, SourceLocation{in.file(), in.line()},
            fmt::format("'{}' and what follows belong to no EG, ORIGIN or NORM block; left out",
                        block));
       break;
@@ -161,7 +161,7 @@ std::string virtualContactXmlFromVgr(const fs::path& vgr) {
                        in.number("the friction coefficient"));
   }
   if (!in.done())
-    warn(SourceLocation{in.file(), in.line()},
+    warn(WarningKind::VirtualContact, SourceLocation{in.file(), in.line()},
          fmt::format("text after the {} contacts the file declares; left out", contacts));
   return xml + "  </virtual_contacts>";
 }

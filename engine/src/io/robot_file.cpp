@@ -60,7 +60,7 @@ Coupling parseCoupling(const fs::path& file, const XMLElement& element, int dof_
   }
   if (!rest.empty()) {
     // GraspIt! stops reading here and ignores the rest (BarrettBH8_280 has 'd1-2.46').
-    warn(xml::at(file, element),
+    warn(WarningKind::Robot, xml::at(file, element),
          fmt::format("expression '{}': trailing '{}' ignored as GraspIt! does; write a negative "
                      "offset as '+-2.46'",
                      expression, rest));
@@ -136,7 +136,7 @@ Joint readJoint(const fs::path& file, const XMLElement& element, int dof_count) 
   joint.max = xml::requiredNumber(file, element, "maxValue") * scale;
   if (joint.min > joint.max) {
     // GraspIt! (DOF::updateMinMax) orders a reversed pair; files in its tree rely on it.
-    warn(xml::at(file, element),
+    warn(WarningKind::Robot, xml::at(file, element),
          fmt::format("minValue {} is greater than maxValue {}; the limits are swapped, as GraspIt! "
                      "does",
                      xml::requiredNumber(file, element, "minValue"),
@@ -267,7 +267,7 @@ class RobotReader {
     } catch (const Error& e) {
       if (!options_.genericRobotFallback) throw Error(xml::at(file_, root), e.message());
       // Asked for: behave as a generic Hand, and say so.
-      warn(xml::at(file_, root),
+      warn(WarningKind::Plugin, xml::at(file_, root),
            fmt::format("no plugin provides robot type '{}'; loaded as a generic Hand (plugin "
                        "search path: {})",
                        robot.type, registry.plugins().describeSearchPath()));
@@ -381,7 +381,8 @@ class RobotReader {
     for (std::size_t d = 0; d < robot.dofs.size(); ++d) {
       Dof& dof = robot.dofs[d];
       if (dof.joints.empty()) {
-        warn(xml::at(file_, *dof_elements[d]), fmt::format("DOF {} drives no joint", d));
+        warn(WarningKind::Robot, xml::at(file_, *dof_elements[d]),
+             fmt::format("DOF {} drives no joint", d));
         dof.min = dof.max = 0.0;
       } else if (dof.min > dof.max) {
         throw Error(xml::at(file_, *dof_elements[d]),
@@ -452,7 +453,8 @@ class RobotReader {
       try {
         robot.eigengrasps = loadEigengraspFile(dir_ / robot.eigengraspFile, dofs);
       } catch (const Error& bad) {
-        warn(xml::at(file_, *e), fmt::format("{}; identity eigengrasps are used", bad.what()));
+        warn(WarningKind::Eigengrasp, xml::at(file_, *e),
+             fmt::format("{}; identity eigengrasps are used", bad.what()));
       }
     }
     if (const auto* e = xml::child(root, "virtualContacts")) {
@@ -460,7 +462,8 @@ class RobotReader {
       try {
         robot.virtualContacts = loadVirtualContactFile(dir_ / robot.virtualContactFile);
       } catch (const Error& bad) {
-        warn(xml::at(file_, *e), fmt::format("{}; the robot has no virtual contacts", bad.what()));
+        warn(WarningKind::VirtualContact, xml::at(file_, *e),
+             fmt::format("{}; the robot has no virtual contacts", bad.what()));
       }
     }
     if (const auto* e = xml::child(root, "cyberGlove")) robot.cyberGloveFile = xml::text(*e);
@@ -469,7 +472,8 @@ class RobotReader {
       try {
         birds.number = xml::intAttribute(file_, *e, "number").value_or(0);
       } catch (const Error& bad) {
-        warn(xml::at(file_, *e), std::string(bad.message()) + "; sensor number 0 used");
+        warn(WarningKind::Robot, xml::at(file_, *e),
+             std::string(bad.message()) + "; sensor number 0 used");
       }
       if (const auto* t = xml::child(*e, "transform")) birds.offset = xml::transform(file_, *t);
       robot.flockOfBirds = birds;

@@ -68,7 +68,8 @@ void warnUnknownChildren(const std::filesystem::path& file, const tinyxml2::XMLE
                          std::initializer_list<std::string_view> known) {
   for (auto* e = parent.FirstChildElement(); e; e = e->NextSiblingElement()) {
     if (std::find(known.begin(), known.end(), std::string_view(e->Name())) == known.end()) {
-      warn(at(file, *e), fmt::format("unknown tag inside <{}> ignored", parent.Name()));
+      warn(WarningKind::UnknownElement, at(file, *e),
+           fmt::format("unknown tag inside <{}> ignored", parent.Name()));
     }
   }
 }
@@ -266,7 +267,8 @@ Transform transform(const std::filesystem::path& file, const tinyxml2::XMLElemen
     } else if (name == "fullTransform") {
       step = parseFullTransform(file, *part, text(*part));
     } else {
-      warn(at(file, *part), "unknown transform element ignored (identity)");
+      warn(WarningKind::UnknownElement, at(file, *part),
+           "unknown transform element ignored (identity)");
     }
     total = total * step;
   }

@@ -23,6 +23,42 @@ std::shared_ptr<spdlog::logger> programLogger() {
 
 }  // namespace
 
+std::string_view warningKindName(WarningKind kind) {
+  switch (kind) {
+    case WarningKind::UnknownElement:
+      return "unknown-element";
+    case WarningKind::Geometry:
+      return "geometry";
+    case WarningKind::Mass:
+      return "mass";
+    case WarningKind::Robot:
+      return "robot";
+    case WarningKind::Eigengrasp:
+      return "eigengrasp";
+    case WarningKind::VirtualContact:
+      return "virtual-contact";
+    case WarningKind::Plugin:
+      return "plugin";
+    case WarningKind::Collision:
+      return "collision";
+    case WarningKind::Script:
+      return "script";
+  }
+  return "unknown";
+}
+
+std::optional<WarningKind> warningKindFromName(std::string_view name) {
+  for (WarningKind kind : kWarningKinds) {
+    if (warningKindName(kind) == name) return kind;
+  }
+  return std::nullopt;
+}
+
+std::string describe(const Warning& warning) {
+  const std::string where = warning.where.str();
+  return where.empty() ? warning.message : where + ": " + warning.message;
+}
+
 WarningHandler setWarningHandler(WarningHandler handler) {
   std::lock_guard lock(handler_mutex);
   WarningHandler previous = std::move(currentHandler());
@@ -30,20 +66,19 @@ WarningHandler setWarningHandler(WarningHandler handler) {
   return previous;
 }
 
-void warn(const SourceLocation& where, const std::string& message) {
+void warn(WarningKind kind, const SourceLocation& where, const std::string& message) {
   WarningHandler handler;
   {
     std::lock_guard lock(handler_mutex);
     handler = currentHandler();
   }
+  const Warning warning{kind, where, message};
   if (handler) {
-    handler(where, message);
+    handler(warning);
   } else if (auto logger = programLogger()) {
-    logger->warn("{}: {}", where.str(), message);
+    logger->warn("{}", describe(warning));
   } else {
-    const std::string prefix = where.str();
-    std::fprintf(stderr, "graspkit: warning: %s%s%s\n", prefix.c_str(), prefix.empty() ? "" : ": ",
-                 message.c_str());
+    std::fprintf(stderr, "graspkit: warning: %s\n", describe(warning).c_str());
   }
 }
 

@@ -41,12 +41,6 @@ fs::path engineLibraryFolder() {
   return ec ? fs::path{} : file.parent_path();
 }
 
-fs::path programFolder() {
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path{} : exe.parent_path();
-}
-
 }  // namespace
 
 std::string describeProvides(const PluginInfo& info) {
@@ -61,14 +55,11 @@ PluginLoader::PluginLoader(Registry& registry) : registry_(registry) {}
 std::vector<fs::path> PluginLoader::searchPath() const {
   if (search_path_) return *search_path_;
   std::vector<fs::path> folders = splitPathList(std::getenv("GRASPKIT_PLUGIN_PATH"));
-  // Beside the library: <libdir>/graspkit/plugins. Beside the program: <bindir>/../lib/...
+  // Beside the library, <libdir>/graspkit/plugins: the plugins of the install (or build tree)
+  // this libgraspkit belongs to, and no other's. A folder fixed when configuring would outlive
+  // `cmake --install --prefix` and mix in another install's plugins.
   if (const fs::path lib = engineLibraryFolder(); !lib.empty())
     folders.push_back(lib / "graspkit" / "plugins");
-  if (const fs::path bin = programFolder(); !bin.empty())
-    folders.push_back((bin / ".." / "lib" / "graspkit" / "plugins").lexically_normal());
-#ifdef GRASPKIT_INSTALLED_PLUGIN_DIR
-  folders.emplace_back(GRASPKIT_INSTALLED_PLUGIN_DIR);
-#endif
   std::vector<fs::path> unique;
   for (fs::path& folder : folders)
     if (std::find(unique.begin(), unique.end(), folder) == unique.end())
@@ -150,7 +141,8 @@ void PluginLoader::probeUnseen(const std::vector<fs::path>& files) {
     for (std::size_t i = 0; i < unseen.size(); ++i) probes_[keyOf(unseen[i])] = results[i];
   } catch (const Error& e) {
     // No child process (a process limit, say): plugins then load straight into this process.
-    warn(SourceLocation{}, fmt::format("{}; loading plugins without probing them", e.what()));
+    warn(WarningKind::Plugin, SourceLocation{},
+         fmt::format("{}; loading plugins without probing them", e.what()));
     probe_ = PluginProbe{false, settings.timeout};
   }
 }
@@ -195,7 +187,7 @@ bool PluginLoader::loadProviding(FactoryKind kind, const std::string& name) {
         continue;
     }
     const PluginInfo& info = settle(file);
-    if (!info.loaded) warn(SourceLocation{file.string()}, info.error);
+    if (!info.loaded) warn(WarningKind::Plugin, SourceLocation{file.string()}, info.error);
     if (registry_.contains(kind, name)) return true;
   }
   return registry_.contains(kind, name);

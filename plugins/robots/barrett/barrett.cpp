@@ -21,7 +21,7 @@ class Barrett final : public graspkit::RobotType {
                         dofs[1].type == DofType::Breakaway && dofs[2].type == DofType::Breakaway &&
                         dofs[3].type == DofType::Breakaway;
     if (!shaped) {
-      graspkit::warn(graspkit::SourceLocation{model.file.string()},
+      graspkit::warn(graspkit::WarningKind::Robot, graspkit::SourceLocation{model.file.string()},
                      "a Barrett hand has a rigid spread DOF then three breakaway flexion DOFs; "
                      "this file differs, so it behaves as its file says");
     }

@@ -83,9 +83,10 @@ void checkWrappers(const RobotModel& model) {
     // A misspelt exemption silently makes a tendon wrap; say so, but load as GraspIt! does.
     for (const std::string& exempt : wrapper.exemptions)
       if (!names.count(exempt))
-        graspkit::warn(in(model), fmt::format("<tendonWrapper> {} exempts tendon '{}', which "
-                                              "the robot does not have",
-                                              w, exempt));
+        graspkit::warn(graspkit::WarningKind::Robot, in(model),
+                       fmt::format("<tendonWrapper> {} exempts tendon '{}', which "
+                                   "the robot does not have",
+                                   w, exempt));
   }
 }
 

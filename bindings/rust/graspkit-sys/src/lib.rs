@@ -25,6 +25,7 @@ pub const GRASPKIT_LOG_WARNING: graspkit_log_level = 1;
 pub type graspkit_log_fn = Option<
     unsafe extern "C" fn(
         level: graspkit_log_level,
+        kind: *const c_char,
         file: *const c_char,
         line: c_int,
         element: *const c_char,

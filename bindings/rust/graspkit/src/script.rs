@@ -100,6 +100,9 @@ pub fn plugin_search_path() -> Result<String> {
 /// One warning of the engine's (suspicious input that still loads).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LogRecord {
+    /// What it is about: "unknown-element", "geometry", "mass", "robot", "eigengrasp",
+    /// "virtual-contact", "plugin", "collision" or "script".
+    pub kind: String,
     /// The file ("" when unknown).
     pub file: String,
     /// The line (0 when unknown).
@@ -117,6 +120,7 @@ static LOG_CALLBACK: Mutex<Option<LogCallback>> = Mutex::new(None);
 
 unsafe extern "C" fn log_trampoline(
     _level: sys::graspkit_log_level,
+    kind: *const c_char,
     file: *const c_char,
     line: c_int,
     element: *const c_char,
@@ -124,6 +128,7 @@ unsafe extern "C" fn log_trampoline(
     _user: *mut c_void,
 ) {
     let record = LogRecord {
+        kind: crate::error::text(kind),
         file: crate::error::text(file),
         line,
         element: crate::error::text(element),

@@ -332,7 +332,11 @@ fn plugins_and_warnings() {
     let seen = Arc::new(AtomicUsize::new(0));
     let counter = seen.clone();
     graspkit::set_log_callback(Some(Box::new(move |r: &graspkit::LogRecord| {
-        if r.element == "colour" && r.line == 4 && r.file.ends_with("odd.xml") {
+        if r.kind == "unknown-element"
+            && r.element == "colour"
+            && r.line == 4
+            && r.file.ends_with("odd.xml")
+        {
             counter.fetch_add(1, Ordering::SeqCst);
         }
     })))

@@ -4,6 +4,7 @@
 // program makes one ScriptHost per script; `graspkit run` and `graspkit test` are two such hosts.
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,7 +36,9 @@ struct ScriptOptions {
   // and searched for relative model paths.
   LoadOptions load;
   std::vector<std::string> args;  // arg[1], arg[2], ...; arg[0] is the script
-  bool showProgress = false;      // graspkit.progress() draws on stderr (a terminal)
+  // Where graspkit.progress() and planner:run report: the fraction done (0..1) and a line of
+  // text. The host decides how to show it (the command line's ProgressReporter); empty: nowhere.
+  std::function<void(double fraction, const std::string& text)> progress;
   // print() writes to stderr, so that stdout carries only a JSON result (`--json`).
   bool printToStderr = false;
 };
