@@ -1,6 +1,9 @@
 // The Body class: a free body (obstacle or graspable object), a robot link or base, or a mount
 // piece, as the engine's BodyRef names them; and contacts as plain tables.
 
+#include <algorithm>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "bound_objects.hpp"
@@ -110,6 +113,67 @@ int world(lua_State* L) {
   return 1;
 }
 
+// The mesh's vertices in the world frame (default) or the body's own: {frame = "world" | "body"}.
+std::vector<Vector3> vertices(lua_State* L, const BoundBody& body, int options_arg) {
+  const OptionsTable options(L, options_arg, {"frame"});
+  const std::string frame = options.string("frame", "world");
+  if (frame != "world" && frame != "body")
+    throw ArgumentError(L, options_arg, "option 'frame' must be 'world' or 'body'");
+  const auto& mesh = bodyModel(body.world->world, body.ref).mesh;
+  std::vector<Vector3> points = mesh ? mesh->vertices : std::vector<Vector3>{};
+  if (frame == "world") {
+    const Transform pose = bodyPose(body.world->world, body.ref);
+    for (Vector3& p : points) p = pose * p;
+  }
+  return points;
+}
+
+// body:vertices([{frame = "world"}]) -> {{x, y, z}, ...}, mm.
+int vertexList(lua_State* L) {
+  const BoundBody& body = toBody(L, 1);
+  const std::vector<Vector3> points = vertices(L, body, 2);
+  lua_createtable(L, static_cast<int>(points.size()), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    pushVector3(L, points[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+// body:bounds([{frame = "world"}]) -> {min = {x, y, z}, max = {x, y, z}}: the axis-aligned box
+// of the mesh's vertices in that frame; nil for a body without geometry.
+int bounds(lua_State* L) {
+  const BoundBody& body = toBody(L, 1);
+  const std::vector<Vector3> points = vertices(L, body, 2);
+  if (points.empty()) {
+    lua_pushnil(L);
+    return 1;
+  }
+  Vector3 low = points.front(), high = points.front();
+  for (const Vector3& p : points) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  lua_createtable(L, 0, 2);
+  pushVector3(L, low);
+  lua_setfield(L, -2, "min");
+  pushVector3(L, high);
+  lua_setfield(L, -2, "max");
+  return 1;
+}
+
+// body:max_radius(): the largest distance from the body's origin to a vertex of its mesh (mm;
+// 0 without geometry), the radius of the smallest sphere about the origin holding the body.
+int maxRadius(lua_State* L) {
+  const BoundBody& body = toBody(L, 1);
+  const auto& mesh = bodyModel(body.world->world, body.ref).mesh;
+  double radius = 0.0;
+  if (mesh)
+    for (const Vector3& p : mesh->vertices) radius = std::max(radius, p.norm());
+  lua_pushnumber(L, radius);
+  return 1;
+}
+
 int bodyToString(lua_State* L) {
   const BoundBody& body = toBody(L, 1);
   const std::string text = fmt::format("Body({}, {})", bodyName(body.world->world, body.ref),
@@ -119,20 +183,34 @@ int bodyToString(lua_State* L) {
 }
 
 int bodyEquals(lua_State* L) {
-  const auto* a = testObject<BoundBody>(L, 1, kBodyClass);
-  const auto* b = testObject<BoundBody>(L, 2, kBodyClass);
-  lua_pushboolean(L, a != nullptr && b != nullptr && a->world == b->world && a->ref == b->ref);
+  auto* a = testObject<BoundBody>(L, 1, kBodyClass);
+  auto* b = testObject<BoundBody>(L, 2, kBodyClass);
+  lua_pushboolean(L, a != nullptr && b != nullptr && followRemovals(*a) && followRemovals(*b) &&
+                         a->world == b->world && a->ref == b->ref);
   return 1;
 }
 
 }  // namespace
 
 void pushBody(lua_State* L, const WorldHandle& world, const BodyRef& ref) {
-  newObject<BoundBody>(L, kBodyClass, BoundBody{world, ref});
+  newObject<BoundBody>(L, kBodyClass, BoundBody{world, ref, world->removedBodies.size()});
+}
+
+bool followRemovals(BoundBody& body) {
+  const std::vector<int>& removed = body.world->removedBodies;
+  for (; body.removalsSeen < removed.size(); ++body.removalsSeen) {
+    if (body.ref.kind != BodyRef::Kind::Body) continue;
+    const int gone = removed[body.removalsSeen];
+    if (body.ref.index == gone) return false;
+    if (body.ref.index > gone) --body.ref.index;
+  }
+  return true;
 }
 
 BoundBody& toBody(lua_State* L, int arg) {
-  return toObject<BoundBody>(L, arg, kBodyClass, "Body");
+  BoundBody& body = toObject<BoundBody>(L, arg, kBodyClass, "Body");
+  if (!followRemovals(body)) throw ArgumentError(L, arg, "the body was removed from its world");
+  return body;
 }
 
 BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world) {
@@ -149,7 +227,8 @@ BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world) {
                                     "named <robot>_palm and <robot>_chain<c>_link<l>, from 0)",
                                     wanted, known.empty() ? "none" : known));
   }
-  const BoundBody& body = toObject<BoundBody>(L, arg, kBodyClass, "Body or body name");
+  BoundBody& body = toObject<BoundBody>(L, arg, kBodyClass, "Body or body name");
+  if (!followRemovals(body)) throw ArgumentError(L, arg, "the body was removed from its world");
   if (body.world.get() != &world) {
     throw ArgumentError(L, arg, "the body belongs to another world (a clone?)");
   }
@@ -191,6 +270,9 @@ void registerBodyClass(lua_State* L) {
       {"inertia", guarded<inertia>},
       {"triangle_count", guarded<triangleCount>},
       {"is_dynamic", guarded<isDynamic>},
+      {"vertices", guarded<vertexList>},
+      {"bounds", guarded<bounds>},
+      {"max_radius", guarded<maxRadius>},
       {"world", guarded<world>},
       {nullptr, nullptr},
   };

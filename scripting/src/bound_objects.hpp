@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <lua.hpp>
 
@@ -25,12 +26,16 @@ struct ScriptWorld {
   // Built on the first raycast and brought up to date before each one.
   std::unique_ptr<RayScene> rays;
   std::size_t raySceneBodyCount = 0;
+  // Free-body indices removed by world:remove_body, in order. A Body (or Grasp) object records
+  // how many it has seen and renumbers itself when it is next used.
+  std::vector<int> removedBodies;
 };
 using WorldHandle = std::shared_ptr<ScriptWorld>;
 
 struct BoundBody {
   WorldHandle world;
   BodyRef ref;
+  std::size_t removalsSeen = 0;  // of world->removedBodies
 };
 
 struct BoundRobot {
@@ -41,6 +46,7 @@ struct BoundRobot {
 struct BoundGrasp {
   WorldHandle world;
   Grasp grasp;
+  std::size_t removalsSeen = 0;  // its bodies are those of the world before later removals
 };
 
 void pushWorld(lua_State* L, WorldHandle world);
@@ -54,6 +60,11 @@ ScriptWorld& toWorld(lua_State* L, int arg);
 BoundBody& toBody(lua_State* L, int arg);
 BoundRobot& toRobot(lua_State* L, int arg);
 BoundGrasp& toGrasp(lua_State* L, int arg);
+// Brings `body` up to date with the world's removals; false when its own body was removed.
+bool followRemovals(BoundBody& body);
+// Throws when bodies were removed from the grasp's world since it was measured (its contacts
+// would name the wrong bodies).
+void checkGraspBodies(const BoundGrasp& grasp);
 
 // A body argument: a Body object of `world`, or the name of one of its bodies or links.
 BodyRef toBodyOf(lua_State* L, int arg, const ScriptWorld& world);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bound_objects.hpp"
+#include "graspkit/error.hpp"
 #include "graspkit/quality.hpp"
 #include "graspkit/registry.hpp"
 #include "lua_api.hpp"
@@ -38,6 +39,7 @@ int quality(lua_State* L) {
 
 int contacts(lua_State* L) {
   const BoundGrasp& grasp = toGrasp(L, 1);
+  checkGraspBodies(grasp);
   const auto& found = grasp.grasp.contacts;
   lua_createtable(L, static_cast<int>(found.size()), 0);
   for (std::size_t i = 0; i < found.size(); ++i) {
@@ -54,6 +56,7 @@ int contactCount(lua_State* L) {
 
 int object(lua_State* L) {
   const BoundGrasp& grasp = toGrasp(L, 1);
+  checkGraspBodies(grasp);
   pushBody(L, grasp.world, grasp.grasp.object);
   return 1;
 }
@@ -90,7 +93,14 @@ int graspToString(lua_State* L) {
 }  // namespace
 
 void pushGrasp(lua_State* L, const WorldHandle& world, Grasp grasp) {
-  newObject<BoundGrasp>(L, kGraspClass, BoundGrasp{world, std::move(grasp)});
+  newObject<BoundGrasp>(L, kGraspClass,
+                        BoundGrasp{world, std::move(grasp), world->removedBodies.size()});
+}
+
+void checkGraspBodies(const BoundGrasp& grasp) {
+  if (grasp.removalsSeen != grasp.world->removedBodies.size())
+    throw Error(
+        "bodies were removed from the world since this grasp was measured; measure it again");
 }
 
 BoundGrasp& toGrasp(lua_State* L, int arg) {

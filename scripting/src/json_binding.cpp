@@ -50,7 +50,10 @@ json toJson(lua_State* L, int index, int depth, const std::string& path) {
       if (lua_isinteger(L, index)) return static_cast<std::int64_t>(lua_tointeger(L, index));
       const double value = lua_tonumber(L, index);
       if (!std::isfinite(value)) {
-        throw Error(fmt::format("json_encode: {} is {}, which JSON cannot hold", path, value));
+        throw Error(fmt::format("json_encode: {} is {}, which JSON cannot hold", path,
+                                std::isnan(value) ? "NaN"
+                                : value > 0       ? "inf"
+                                                  : "-inf"));
       }
       return value;
     }

@@ -260,6 +260,27 @@ int OptionsTable::integer(const char* key, int fallback) const {
   return static_cast<int>(value);
 }
 
+std::optional<Vector3> OptionsTable::vector3(const char* key) const {
+  const int type = pushField(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  Vector3 v;
+  bool ok = type == LUA_TTABLE && lua_rawlen(L_, -1) == 3;
+  for (int i = 0; ok && i < 3; ++i) {
+    const int element = lua_rawgeti(L_, -1, i + 1);
+    v[i] = lua_tonumber(L_, -1);
+    lua_pop(L_, 1);
+    ok = element == LUA_TNUMBER && std::isfinite(v[i]);
+  }
+  lua_pop(L_, 1);
+  if (!ok)
+    throw ArgumentError(L_, arg_,
+                        fmt::format("option '{}' must be {{x, y, z}} of finite numbers", key));
+  return v;
+}
+
 bool OptionsTable::boolean(const char* key, bool fallback) const {
   const int type = pushField(key);
   const bool value = lua_toboolean(L_, -1) != 0;

@@ -10,6 +10,7 @@
 #include <lua.hpp>
 
 #include <new>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,7 @@ class OptionsTable {
   int integer(const char* key, int fallback) const;
   bool boolean(const char* key, bool fallback) const;
   std::string string(const char* key, const std::string& fallback) const;
+  std::optional<Vector3> vector3(const char* key) const;  // {x, y, z} of finite numbers
   bool has(const char* key) const;
 
  private:

@@ -97,7 +97,11 @@ class LuaSearchEnergy final : public SearchEnergy {
                               type == LUA_TSTRING ? text : "(error object is not a string)"));
     if (type != LUA_TNUMBER)
       throw Error(fmt::format("{} returned {}, not a number", link.name, lua_typename(L, type)));
-    if (std::isnan(value)) throw Error(link.name + " returned NaN");
+    // An infinite energy would win (or lose) every comparison and poison averages: refused as
+    // NaN is, naming the function's file and line.
+    if (!std::isfinite(value))
+      throw Error(fmt::format("{} returned {}", link.name,
+                              std::isnan(value) ? "NaN" : (value > 0 ? "inf" : "-inf")));
     return value;
   }
 
@@ -180,6 +184,11 @@ int robotOption(lua_State* L, int options, const World& world) {
     throw ArgumentError(L, options,
                         "no robot of the world is a hand; name one with option 'robot'");
   }
+  if (const auto* robot = testObject<BoundRobot>(L, lua_gettop(L), kRobotClass)) {
+    if (&robot->world->world != &world)
+      throw ArgumentError(L, options, "option 'robot': the robot belongs to another world");
+    return robot->index;
+  }
   if (type == LUA_TSTRING) {
     const std::string name = lua_tostring(L, -1);
     if (const auto index = world.findRobot(name)) return *index;
@@ -188,9 +197,10 @@ int robotOption(lua_State* L, int options, const World& world) {
   }
   const double index = lua_tonumber(L, -1);
   if (type != LUA_TNUMBER || index != std::floor(index) || index < 1 || index > world.robotCount())
-    throw ArgumentError(L, options,
-                        fmt::format("option 'robot' must be a robot name or an index from 1 to {}",
-                                    world.robotCount()));
+    throw ArgumentError(
+        L, options,
+        fmt::format("option 'robot' must be a Robot, a robot name or an index from 1 to {}",
+                    world.robotCount()));
   return static_cast<int>(index) - 1;
 }
 

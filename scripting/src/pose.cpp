@@ -39,6 +39,32 @@ int axisAngle(lua_State* L) {
   return 1;
 }
 
+// graspkit.look_at(eye, target [, up = {0, 0, 1}]): a pose at `eye` whose z axis points at
+// `target` (a hand's approach direction, a camera's view), whose y axis is `up` made square to
+// z, and x = y cross z. An `up` along the line of sight is replaced by the world y axis (or x).
+int lookAt(lua_State* L) {
+  const Vector3 eye = toVector3(L, 1);
+  const Vector3 target = toVector3(L, 2);
+  Vector3 up = isNone(L, 3) ? Vector3::UnitZ() : toVector3(L, 3);
+  const Vector3 z = target - eye;
+  if (z.norm() < 1e-9) throw ArgumentError(L, 2, "the target is at the eye");
+  const Vector3 forward = z.normalized();
+  if (up.norm() < 1e-12) throw ArgumentError(L, 3, "up is zero");
+  for (const Vector3& fallback : {Vector3::UnitY().eval(), Vector3::UnitX().eval()}) {
+    if (up.normalized().cross(forward).norm() > 1e-6) break;
+    up = fallback;
+  }
+  const Vector3 x = up.cross(forward).normalized();
+  const Vector3 y = forward.cross(x);
+  Transform pose = Transform::Identity();
+  pose.linear().col(0) = x;
+  pose.linear().col(1) = y;
+  pose.linear().col(2) = forward;
+  pose.translation() = eye;
+  pushPose(L, pose);
+  return 1;
+}
+
 int compose(lua_State* L) {
   const int count = lua_gettop(L);
   if (count < 1) throw ArgumentError(L, 1, "pose expected, got no value");
@@ -104,6 +130,7 @@ void openPoseFunctions(lua_State* L) {
       {"identity", guarded<identity>},
       {"axis_angle", guarded<axisAngle>},
       {"compose", guarded<compose>},
+      {"look_at", guarded<lookAt>},
       {"inverse", guarded<inverse>},
       {"transform_point", guarded<transformPoint>},
       {"rotate_vector", guarded<rotateVector>},

@@ -7,6 +7,10 @@
 #include "graspkit/autograsp.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/inverse_kinematics.hpp"
+#include "graspkit/planning/eigengrasp_map.hpp"
+#include "graspkit/planning/planner.hpp"
+#include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 
@@ -244,18 +248,153 @@ int open(lua_State* L) {
 // motion's record.
 int approachToContact(lua_State* L) {
   BoundRobot& robot = toRobot(L, 1);
-  const OptionsTable options(L, 2, {"max_distance", "step"});
+  const OptionsTable options(L, 2, {"max_distance", "step", "direction"});
   ApproachOptions request;
   request.maxDistance = options.number("max_distance", request.maxDistance);
   request.step = options.number("step", request.step);
+  request.direction = options.vector3("direction");
   if (request.maxDistance < 0 || request.step <= 0) {
     throw ArgumentError(L, 2, "max_distance must be >= 0 and step > 0");
   }
+  if (request.direction && request.direction->norm() < 1e-12)
+    throw ArgumentError(L, 2, "option 'direction' is zero");
   const AutoGraspResult result =
       graspkit::approachToContact(robot.world->world, robot.index, request);
   lua_pushboolean(L, result.end == MotionEnd::Contact);
   pushMotion(L, robot.world, result);
   return 2;
+}
+
+// hand:move_dofs_to_contacts(targets, steps [, {stop_at_contact = false, max_steps = 500}]):
+// GraspIt!'s moveDOFToContacts. Each DOF moves toward its target by |step| per step until its
+// links touch something; returns the motion's record.
+int moveDofsToContacts(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  DofMotion motion;
+  motion.targets = toNumberList(L, 2);
+  motion.steps = toNumberList(L, 3);
+  const OptionsTable options(L, 4, {"stop_at_contact", "max_steps"});
+  motion.stopAtContact = options.boolean("stop_at_contact", motion.stopAtContact);
+  motion.maxIterations = options.integer("max_steps", motion.maxIterations);
+  const int dofs = robotOf(robot).dofCount();
+  for (int arg : {2, 3}) {
+    const std::size_t n = (arg == 2 ? motion.targets : motion.steps).size();
+    if (static_cast<int>(n) != dofs)
+      throw ArgumentError(L, arg, fmt::format("{} values expected (one per DOF), got {}", dofs, n));
+  }
+  if (motion.maxIterations < 1) throw ArgumentError(L, 4, "option 'max_steps' must be >= 1");
+  const AutoGraspResult result =
+      graspkit::moveDofsToContacts(robot.world->world, robot.index, motion);
+  pushMotion(L, robot.world, result);
+  return 1;
+}
+
+// The hand's eigengrasp map; an error naming the robot when it has no eigengrasps.
+EigengraspMap eigengraspMap(const BoundRobot& robot) {
+  return EigengraspMap(robotOf(robot).model());
+}
+
+// robot:eigengrasps() -> {grasps = {{direction = {...}, min = a, max = b}, ...}, origin = {...},
+// norm = {...}, identity = bool}: dofs = origin + norm .* (sum of a_i direction_i).
+int eigengrasps(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const EigengraspMap map = eigengraspMap(robot);
+  lua_createtable(L, 0, 4);
+  lua_createtable(L, map.size(), 0);
+  for (int i = 0; i < map.size(); ++i) {
+    lua_createtable(L, 0, 3);
+    const Eigen::VectorXd direction = map.direction(i);
+    pushNumberList(L, {direction.data(), static_cast<std::size_t>(direction.size())});
+    lua_setfield(L, -2, "direction");
+    lua_pushnumber(L, map.minAmplitude(i));
+    lua_setfield(L, -2, "min");
+    lua_pushnumber(L, map.maxAmplitude(i));
+    lua_setfield(L, -2, "max");
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_setfield(L, -2, "grasps");
+  pushNumberList(L, {map.origin().data(), static_cast<std::size_t>(map.origin().size())});
+  lua_setfield(L, -2, "origin");
+  pushNumberList(L, {map.norm().data(), static_cast<std::size_t>(map.norm().size())});
+  lua_setfield(L, -2, "norm");
+  lua_pushboolean(L, robotOf(robot).model().eigengrasps.identity);
+  lua_setfield(L, -2, "identity");
+  return 1;
+}
+
+// robot:eigengrasp_amplitudes(): the amplitudes nearest (least squares) to the current DOFs.
+int eigengraspAmplitudes(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const auto& values = robotOf(robot).dofValues();
+  const Eigen::VectorXd a = eigengraspMap(robot).amplitudes(
+      Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  pushNumberList(L, {a.data(), static_cast<std::size_t>(a.size())});
+  return 1;
+}
+
+// robot:set_eigengrasp_amplitudes(a): DOFs from amplitudes, each clamped into its range.
+int setEigengraspAmplitudes(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  const std::vector<double> a = toNumberList(L, 2);
+  const EigengraspMap map = eigengraspMap(robot);
+  if (static_cast<int>(a.size()) != map.size())
+    throw ArgumentError(L, 2,
+                        fmt::format("{} amplitudes expected (the robot has {} eigengrasps), got {}",
+                                    map.size(), map.size(), a.size()));
+  const Eigen::VectorXd dofs =
+      map.dofs(Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size())));
+  robot.world->world.setDofValues(robot.index, std::span<const double>(dofs.data(), dofs.size()));
+  return 0;
+}
+
+// robot:virtual_contacts() -> {{link = Body, point = {...}, normal = {...}}, ...} in the world
+// frame, and whether they were derived from the geometry (the robot file names none).
+int virtualContacts(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  const Robot& r = robotOf(robot);
+  const bool derived = r.model().virtualContacts.empty();
+  const std::vector<VirtualContact> contacts =
+      derived ? deriveVirtualContacts(r) : r.model().virtualContacts;
+  lua_createtable(L, static_cast<int>(contacts.size()), 0);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const VirtualContact& contact = contacts[i];
+    const PlacedVirtualContact placed = placeVirtualContact(r, contact);
+    lua_createtable(L, 0, 3);
+    pushBody(L, robot.world,
+             contact.finger < 0
+                 ? BodyRef::robotBase(robot.index)
+                 : BodyRef::robotLink(robot.index, LinkRef{contact.finger, contact.link}));
+    lua_setfield(L, -2, "link");
+    pushVector3(L, placed.point);
+    lua_setfield(L, -2, "point");
+    pushVector3(L, placed.normal);
+    lua_setfield(L, -2, "normal");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_pushboolean(L, derived);
+  return 2;
+}
+
+// hand:energy(object [, name = "contact"]): the search energy a planner would give the hand where
+// it stands (lower is better); nil and "collides" when the energy rejects a colliding hand.
+int energy(lua_State* L) {
+  const BoundRobot& robot = toRobot(L, 1);
+  PlanningRequest request;
+  request.object = toBodyOf(L, 2, *robot.world);
+  request.energy = isNone(L, 3) ? std::string("contact") : toString(L, 3);
+  request.world = std::make_shared<const World>(robot.world->world.clone());
+  request.robot = robot.index;
+  request.position = PositionSpace::Complete;
+  request.posture = PostureSpace::Dof;
+  auto scene = makePlanningScene(request, makeSearchSpace(request));
+  std::unique_ptr<SearchEnergy> searchEnergy = makeSearchEnergy(request);
+  if (searchEnergy->rejectsCollisions() && scene->handCollides()) {
+    lua_pushnil(L);
+    lua_pushstring(L, "collides");
+    return 2;
+  }
+  lua_pushnumber(L, searchEnergy->evaluate(*scene));
+  return 1;
 }
 
 // hand:contacts([object]): the hand's contacts, seen from its links.
@@ -340,6 +479,12 @@ void registerRobotClass(lua_State* L) {
       {"autograsp", guarded<autograsp>},
       {"open", guarded<open>},
       {"approach_to_contact", guarded<approachToContact>},
+      {"move_dofs_to_contacts", guarded<moveDofsToContacts>},
+      {"eigengrasps", guarded<eigengrasps>},
+      {"eigengrasp_amplitudes", guarded<eigengraspAmplitudes>},
+      {"set_eigengrasp_amplitudes", guarded<setEigengraspAmplitudes>},
+      {"virtual_contacts", guarded<virtualContacts>},
+      {"energy", guarded<energy>},
       {"contacts", guarded<contacts>},
       {"grasp", guarded<grasp>},
       {"world", guarded<world>},

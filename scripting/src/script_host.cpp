@@ -269,7 +269,12 @@ ScriptOutcome ScriptHost::run(int nresults) {
 }
 
 std::string ScriptHost::toJson(int index, int indent) {
-  return luaToJson(L_, index).dump(indent);
+  try {
+    return luaToJson(L_, index).dump(indent);
+  } catch (const Error& e) {  // named after the script: the run is over, its lines are not
+    throw Error(SourceLocation{context_->script.string()},
+                fmt::format("the value the script returns: {}", e.what()));
+  }
 }
 
 ScriptOutcome ScriptHost::runString(const std::string& source, const std::string& chunk_name) {

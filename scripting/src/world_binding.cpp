@@ -1,10 +1,13 @@
 // graspkit.load_world, graspkit.new_world and the World class: building worlds, looking things
 // up, saving, and the world-wide queries (contacts, collision, distance, rays).
 
+#include <variant>
+
 #include <fmt/format.h>
 
 #include "bound_objects.hpp"
 #include "graspkit/collision.hpp"
+#include "graspkit/collision_filter.hpp"
 #include "graspkit/contact_search.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
@@ -254,6 +257,72 @@ int raycast(lua_State* L) {
   return 1;
 }
 
+// world:remove_body(body): removes an obstacle or graspable body (a Body or its name). Body
+// objects of later bodies follow; the removed one's Body objects fail when used.
+int removeBody(lua_State* L) {
+  const WorldHandle& handle = toWorldHandle(L, 1);
+  const BodyRef ref = toBodyOf(L, 2, *handle);
+  if (ref.kind != BodyRef::Kind::Body)
+    throw ArgumentError(L, 2,
+                        fmt::format("{} belongs to a robot: only obstacles and graspable bodies "
+                                    "can be removed",
+                                    bodyName(handle->world, ref)));
+  handle->world.removeBody(ref.index);
+  handle->removedBodies.push_back(ref.index);
+  handle->rays.reset();  // indices moved: rebuilt on the next raycast
+  return 0;
+}
+
+// The collision switch's target at `arg`: a Robot (all its links), else a body.
+std::variant<int, BodyRef> collisionTarget(lua_State* L, int arg, const ScriptWorld& world) {
+  if (const auto* robot = testObject<BoundRobot>(L, arg, kRobotClass)) {
+    if (robot->world.get() != &world)
+      throw ArgumentError(L, arg, "the robot belongs to another world (a clone?)");
+    return robot->index;
+  }
+  return toBodyOf(L, arg, world);
+}
+
+// world:set_collision(a, [b,] enabled): a and b are bodies (or names) or robots. With one, every
+// pair it is in; with two, that pair. Switches only turn pairs off: enabling undoes an earlier
+// disabling, and never overrides a robot's own rules (links of one chain, for instance).
+int setCollision(lua_State* L) {
+  ScriptWorld& world = toWorld(L, 1);
+  const bool pair = lua_gettop(L) >= 4;
+  const bool enabled = toBoolean(L, pair ? 4 : 3);
+  CollisionFilter& filter = world.world.collisionFilter();
+  const auto a = collisionTarget(L, 2, world);
+  if (!pair) {
+    if (const int* robot = std::get_if<int>(&a))
+      filter.setRobotEnabled(*robot, enabled);
+    else
+      filter.setBodyEnabled(std::get<BodyRef>(a), enabled);
+    return 0;
+  }
+  if (std::holds_alternative<int>(a) || testObject<BoundRobot>(L, 3, kRobotClass) != nullptr)
+    throw ArgumentError(L, 2, "a pair switch takes two bodies (links are bodies: robot:links())");
+  filter.setPairEnabled(std::get<BodyRef>(a), toBodyOf(L, 3, world), enabled);
+  return 0;
+}
+
+// world:collision_enabled(a [, b]): with one body or robot, whether its switch is on; with two
+// bodies, whether collision detection looks at that pair at all (switches and robot rules).
+int collisionEnabled(lua_State* L) {
+  const ScriptWorld& world = toWorld(L, 1);
+  const CollisionFilter& filter = world.world.collisionFilter();
+  const auto a = collisionTarget(L, 2, world);
+  if (isNone(L, 3)) {
+    const int* robot = std::get_if<int>(&a);
+    lua_pushboolean(L,
+                    robot ? filter.robotEnabled(*robot) : filter.bodyEnabled(std::get<BodyRef>(a)));
+    return 1;
+  }
+  if (std::holds_alternative<int>(a))
+    throw ArgumentError(L, 2, "a pair takes two bodies (links are bodies: robot:links())");
+  lua_pushboolean(L, filter.isActive(world.world, std::get<BodyRef>(a), toBodyOf(L, 3, world)));
+  return 1;
+}
+
 int worldToString(lua_State* L) {
   const ScriptWorld& world = *toWorldHandle(L, 1);
   const std::string text =
@@ -291,6 +360,9 @@ void openWorldFunctions(lua_State* L) {
       {"collisions", guarded<collisions>},
       {"distance", guarded<distance>},
       {"raycast", guarded<raycast>},
+      {"remove_body", guarded<removeBody>},
+      {"set_collision", guarded<setCollision>},
+      {"collision_enabled", guarded<collisionEnabled>},
       {nullptr, nullptr},
   };
   defineClass(L, kWorldClass, methods, destroyObject<WorldHandle>, guarded<worldToString>);

@@ -43,6 +43,8 @@ COVERED_ELSEWHERE = [
      "package.custom_robot_plugin"),
     (re.compile(r"^(cc|c\+\+|g\+\+|pkg-config)\b"), "package.embedding"),
     (re.compile(r"^PREFIX/bin/graspkit\b"), "package.installed_program"),
+    (re.compile(r"^PYTHONPATH=build/bindings/python /usr/bin/python3 examples/python/"),
+     "python.module (tests/python/test_examples.py)"),
 ]
 PLACEHOLDER = re.compile(r"\[|\.\.\.|\b(?:[A-Z][A-Z0-9_]*(?:\.lua)?)\b(?![=/])")
 

@@ -19,6 +19,8 @@
 #include "graspkit/collision.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/robot.hpp"
 #include "graspkit/world.hpp"
@@ -173,6 +175,34 @@ TEST(AutoGrasp, MoveDofsToContactsNamesAWrongDofCount) {
     EXPECT_NE(std::string(e.what()).find("1 DOFs, the motion gives 2 targets"), std::string::npos)
         << e.what();
   }
+}
+
+// A given direction replaces the approach direction: the hand moves along it in a straight line
+// and stops touching the box; along a zero vector it refuses to move.
+TEST(AutoGrasp, ApproachAlongAGivenDirection) {
+  World world;
+  world.addRobot(
+      Robot(loadRobotFile(test::modelsDir() / "robots" / "parallel_jaw" / "parallel_jaw.xml")));
+  Body box;
+  box.model = loadBodyFile(test::modelsDir() / "objects" / "box.xml");
+  box.kind = BodyKind::Graspable;
+  const int b = world.addBody(std::move(box));
+  Transform start = Transform::Identity();
+  start.translation() = Vector3(-400, 0, 0);
+  world.setRobotPose(0, start);
+  const AutoGraspResult result = approachToContact(
+      world, 0, ApproachOptions{.maxDistance = 1000, .direction = Vector3(3, 0, 0)});
+  EXPECT_EQ(result.end, MotionEnd::Contact);
+  const Transform end = world.robot(0).pose();
+  EXPECT_TRUE(end.linear().isApprox(start.linear(), 1e-12));
+  EXPECT_NEAR(end.translation().y(), 0.0, kTol);
+  EXPECT_NEAR(end.translation().z(), 0.0, kTol);
+  EXPECT_GT(end.translation().x(), -400.0);
+  double gap = 1e9;
+  for (const BodyRef& link : robotLinks(world, 0))
+    gap = std::min(gap, distance(world, link, BodyRef::body(b)).distance);
+  EXPECT_LT(gap, 0.1);
+  EXPECT_THROW(approachToContact(world, 0, ApproachOptions{.direction = Vector3::Zero()}), Error);
 }
 
 TEST(AutoGrasp, RobotIndexOutOfRangeThrows) {

@@ -344,6 +344,28 @@ TEST(CollisionFilter, BodyPairAndStaticSwitches) {
   EXPECT_THROW(filter.isActive(world, table, BodyRef::body(7)), Error);
 }
 
+// Removing a body takes its switches with it and renumbers the switches of the bodies after it:
+// the same pairs stay off, now under their new indices.
+TEST(CollisionFilter, SwitchesFollowARemovedBodysNeighbours) {
+  World world;
+  for (const char* name : {"a", "b", "c", "d"})
+    addBody(world, cubeMesh(), Transform::Identity(), BodyKind::Graspable, name);
+  CollisionFilter& filter = world.collisionFilter();
+  filter.setBodyEnabled(BodyRef::body(1), false);                    // b
+  filter.setBodyEnabled(BodyRef::body(3), false);                    // d
+  filter.setPairEnabled(BodyRef::body(0), BodyRef::body(2), false);  // a-c
+  filter.setPairEnabled(BodyRef::body(1), BodyRef::body(2), false);  // b-c
+  world.removeBody(1);                                               // b goes
+  ASSERT_EQ(world.bodies().size(), 3u);
+  EXPECT_EQ(world.bodies()[1].name, "c");
+  EXPECT_TRUE(filter.bodyEnabled(BodyRef::body(1)));   // c: b's switch went with b
+  EXPECT_FALSE(filter.bodyEnabled(BodyRef::body(2)));  // d, renumbered
+  EXPECT_FALSE(filter.pairEnabled(BodyRef::body(0), BodyRef::body(1)));      // a-c, renumbered
+  EXPECT_FALSE(filter.isActive(world, BodyRef::body(0), BodyRef::body(2)));  // d is off
+  EXPECT_EQ(collisionReport(world).size(), 0u);  // a-c off, d off: nothing left to collide
+  EXPECT_THROW(world.removeBody(3), Error);
+}
+
 std::optional<World> bh8World() {
   const fs::path models = test::modelsDir();
   LoadOptions options;

@@ -1,7 +1,7 @@
-// The scripting sandbox (issue 5), attacked the way a hostile or careless script would: each way
-// out (running programs, native code, bytecode, files outside the allowed folders by absolute
-// path, `..` or symbolic link) must be refused with a message naming the function and the file,
-// while the script's own folder, --allow-read, --allow-write and the model roots stay usable.
+// The scripting sandbox (docs/security.md), attacked the way a hostile or careless script would:
+// each way out (running programs, native code, bytecode, files outside the allowed folders by
+// absolute path, `..` or symbolic link) must be refused with a message naming the function and the
+// file, while the script's own folder, --allow-read, --allow-write and the model roots stay usable.
 // Where it is cheap, the same attack under --unsafe shows the attack is real (it succeeds there).
 // The time limit must stop loops that catch errors or hide in coroutines.
 

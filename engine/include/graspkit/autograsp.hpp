@@ -6,6 +6,7 @@
 // (closer than the contact threshold) and never interpenetrates.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,10 +80,14 @@ bool openUntilFree(World& world, int robot);
 struct ApproachOptions {
   double maxDistance = 500.0;              // mm
   double step = 50.0 * kContactThreshold;  // mm, GraspIt!'s 10 mm
+  // The way to move, in the world frame (any length but zero); unset: the hand's approach
+  // direction (the palm's approach frame z), as GraspIt! moves.
+  std::optional<Vector3> direction;
 };
 
-// Moves the hand along its approach direction (the palm's approach frame z) until it touches
-// something. Throws graspkit::Error when the robot is in collision before it moves.
+// Moves the hand in a straight line (its approach direction unless `options.direction` says
+// otherwise) until it touches something. Throws graspkit::Error when the robot is in collision
+// before it moves, or for a zero or non-finite direction.
 AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions& options = {});
 
 // The contacts between robot `robot`'s links and every other body the collision filter pairs

@@ -41,6 +41,10 @@ class CollisionFilter {
   // Obstacle against obstacle; on by default, as in GraspIt!.
   void setStaticPairsEnabled(bool enabled) { static_pairs_ = enabled; }
 
+  // Free body `index` left the world (World::removeBody): its switches go, and the switches of
+  // the bodies after it follow them to their new indices.
+  void bodyRemoved(int index);
+
   bool bodyEnabled(const BodyRef& body) const;
   bool pairEnabled(const BodyRef& a, const BodyRef& b) const;  // the user's switch only
   bool robotEnabled(int robot) const;

@@ -60,6 +60,10 @@ class World {
 
   // Adds a body; its name is made unique within the world. Returns its index.
   int addBody(Body body);
+  // Removes free body `index` (an obstacle or graspable body; robots' links are not bodies here).
+  // The bodies after it move down one index, and BodyRefs to them held elsewhere must follow;
+  // the collision filter's switches do. Throws graspkit::Error for a bad index.
+  void removeBody(int index);
   int addRobot(Robot robot, std::filesystem::path filename = {});
   // Mounts `child_robot` on the end of `parent_chain` of `parent_robot`. Throws graspkit::Error
   // for bad indices, a robot mounted twice, or a cycle.

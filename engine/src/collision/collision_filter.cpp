@@ -117,6 +117,26 @@ void CollisionFilter::setRobotEnabled(int robot, bool enabled) {
   setMember(disabled_robots_, robot, !enabled);
 }
 
+void CollisionFilter::bodyRemoved(int index) {
+  auto gone = [index](const BodyRef& r) {
+    return r.kind == BodyRef::Kind::Body && r.index == index;
+  };
+  auto renumber = [index](BodyRef r) {
+    if (r.kind == BodyRef::Kind::Body && r.index > index) --r.index;
+    return r;
+  };
+  std::vector<BodyRef> bodies;
+  for (const BodyRef& r : disabled_bodies_)
+    if (!gone(r)) bodies.push_back(renumber(r));
+  std::vector<std::pair<BodyRef, BodyRef>> pairs;
+  for (const auto& [a, b] : disabled_pairs_)
+    if (!gone(a) && !gone(b)) pairs.push_back(ordered(renumber(a), renumber(b)));
+  std::sort(bodies.begin(), bodies.end());  // renumbering keeps the order; sorted to be sure
+  std::sort(pairs.begin(), pairs.end());
+  disabled_bodies_ = std::move(bodies);
+  disabled_pairs_ = std::move(pairs);
+}
+
 bool CollisionFilter::bodyEnabled(const BodyRef& body) const {
   return !contains(disabled_bodies_, body);
 }

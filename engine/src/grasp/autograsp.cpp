@@ -361,8 +361,13 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
     throw Error(fmt::format("robot '{}' collides before it approaches", world.robot(robot).name()));
   }
   const Transform start = world.robot(robot).pose();
-  const Vector3 direction =
-      start.linear() * world.robot(robot).model().approachFrame().linear().col(2);
+  Vector3 direction = start.linear() * world.robot(robot).model().approachFrame().linear().col(2);
+  if (options.direction) {
+    const double length = options.direction->norm();
+    if (!std::isfinite(length) || length < 1e-12)
+      throw Error("approach direction must be a finite, non-zero vector");
+    direction = *options.direction / length;
+  }
   auto placeAt = [&](double s) {
     Transform pose = start;
     pose.translation() += s * direction;

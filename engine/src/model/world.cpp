@@ -54,6 +54,13 @@ int World::addBody(Body body) {
   return static_cast<int>(bodies_.size()) - 1;
 }
 
+void World::removeBody(int index) {
+  if (index < 0 || index >= static_cast<int>(bodies_.size()))
+    throw Error(fmt::format("body {} requested, the world has {}", index, bodies_.size()));
+  bodies_.erase(bodies_.begin() + index);
+  collision_filter_.bodyRemoved(index);
+}
+
 int World::addRobot(Robot robot, std::filesystem::path filename) {
   robots_.push_back(WorldRobot{std::move(robot), std::move(filename)});
   return robotCount() - 1;

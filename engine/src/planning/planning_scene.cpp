@@ -77,17 +77,21 @@ std::vector<PlacedVirtualContact> PlanningScene::virtualContacts() const {
   std::vector<PlacedVirtualContact> placed;
   placed.reserve(contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const VirtualContact& contact = contacts[i];
-    const Transform& link =
-        contact.finger < 0 ? robot.pose() : robot.linkPose(contact.finger, contact.link);
-    PlacedVirtualContact p;
-    p.point = link * contact.location;
-    p.normal = (link.linear() * contact.normal).normalized();
-    p.frame = link * makeTransform(contact.translation, contact.rotation);
+    PlacedVirtualContact p = placeVirtualContact(robot, contacts[i]);
     p.index = static_cast<int>(i);
     placed.push_back(p);
   }
   return placed;
+}
+
+PlacedVirtualContact placeVirtualContact(const Robot& robot, const VirtualContact& contact) {
+  const Transform& link =
+      contact.finger < 0 ? robot.pose() : robot.linkPose(contact.finger, contact.link);
+  PlacedVirtualContact p;
+  p.point = link * contact.location;
+  p.normal = (link.linear() * contact.normal).normalized();
+  p.frame = link * makeTransform(contact.translation, contact.rotation);
+  return p;
 }
 
 std::optional<SurfacePoint> PlanningScene::nearestObjectPoint(const Vector3& point,

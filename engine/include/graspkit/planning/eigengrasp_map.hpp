@@ -28,6 +28,12 @@ class EigengraspMap {
   // The search range of amplitude i: the file's <Limits>, or GraspIt!'s default of [-4, 4]; for a
   // hand without an eigengrasp file (identity eigengrasps), its DOF's whole range.
   double minAmplitude(int i) const { return min_[i]; }
+  // The posture the amplitudes are measured from, and the per-DOF scale (the file's, or the
+  // DOF-range midpoint and ones).
+  const Eigen::VectorXd& origin() const { return origin_; }
+  const Eigen::VectorXd& norm() const { return norm_; }
+  // Eigengrasp i's direction, one value per DOF.
+  Eigen::VectorXd direction(int i) const { return directions_.row(i).transpose(); }
   double maxAmplitude(int i) const { return max_[i]; }
 
  private:

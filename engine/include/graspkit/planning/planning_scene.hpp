@@ -28,6 +28,9 @@ struct PlacedVirtualContact {
   int index = 0;                            // into RobotModel::virtualContacts
 };
 
+// `contact` (in its link's frame) placed where `robot`'s links are now.
+PlacedVirtualContact placeVirtualContact(const Robot& robot, const VirtualContact& contact);
+
 class PlanningScene {
  public:
   // Throws graspkit::Error for a bad robot index, a robot that is not a hand, or an object that

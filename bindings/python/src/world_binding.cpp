@@ -1,0 +1,291 @@
+// graspkit.World, graspkit.load_world and graspkit.Body: building worlds, saving them, looking
+// bodies and robots up, and what a body is (pose, mass properties, mesh).
+
+#include <fmt/format.h>
+
+#include "graspkit/collision.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/material.hpp"
+#include "python_support.hpp"
+
+namespace graspkit::python {
+
+Body& BodyView::body() const {
+  auto& bodies = world->world.bodies();
+  if (index < 0 || index >= static_cast<int>(bodies.size()))
+    throw py::index_error(fmt::format("body {} no longer exists", index));
+  return bodies[static_cast<std::size_t>(index)];
+}
+
+const Robot& RobotView::robot() const {
+  if (index < 0 || index >= world->world.robotCount())
+    throw py::index_error(fmt::format("robot {} no longer exists", index));
+  return world->world.robot(index);
+}
+
+BodyRef toBodyRef(const WorldHandle& world, const py::handle& body, const char* what) {
+  if (py::isinstance<BodyView>(body)) {
+    const auto& view = body.cast<const BodyView&>();
+    if (view.world.get() != &world)
+      throw py::value_error(fmt::format("{}: the body belongs to another world", what));
+    view.body();
+    return BodyRef::body(view.index);
+  }
+  if (py::isinstance<py::str>(body)) {
+    const auto name = body.cast<std::string>();
+    if (auto found = findBodyRef(world.world, name)) return *found;
+    throw py::value_error(fmt::format("{}: the world has no body named '{}'", what, name));
+  }
+  throw py::type_error(fmt::format("{}: a Body or a body name expected", what));
+}
+
+int toRobotIndex(const WorldHandle& world, const py::handle& robot) {
+  if (robot.is_none()) {
+    if (auto hand = world.world.firstHand()) return *hand;
+    throw py::value_error("the world has no hand");
+  }
+  if (py::isinstance<RobotView>(robot)) {
+    const auto& view = robot.cast<const RobotView&>();
+    if (view.world.get() != &world)
+      throw py::value_error("robot: the robot belongs to another world");
+    view.robot();
+    return view.index;
+  }
+  if (py::isinstance<py::str>(robot)) {
+    const auto name = robot.cast<std::string>();
+    if (auto found = world.world.findRobot(name)) return *found;
+    throw py::value_error(fmt::format("the world has no robot named '{}'", name));
+  }
+  const int index = robot.cast<int>();
+  if (index < 0 || index >= world.world.robotCount())
+    throw py::index_error(
+        fmt::format("robot {} out of range (the world has {})", index, world.world.robotCount()));
+  return index;
+}
+
+namespace {
+
+LoadOptions loadOptions(const std::vector<std::filesystem::path>& roots, bool generic_robots) {
+  LoadOptions options;
+  options.roots = roots;
+  options.genericRobotFallback = generic_robots;
+  return options;
+}
+
+// Files are held by absolute path, so that a world saved elsewhere names them correctly (relative
+// to its own folder when they lie below it, else absolute).
+BodyView addBody(const WorldPtr& world, const std::filesystem::path& relative,
+                 const py::object& pose, BodyKind kind) {
+  const std::filesystem::path file = std::filesystem::absolute(relative);
+  return withWarnings([&] {
+    Body body;
+    body.model = loadBodyFile(file, &world->cache);
+    body.kind = kind;
+    body.setPose(pose.is_none() ? Transform::Identity() : toTransform(pose));
+    return BodyView{world, world->world.addBody(std::move(body))};
+  });
+}
+
+RobotView addRobot(const WorldPtr& world, const std::filesystem::path& relative,
+                   const py::object& pose, bool generic_robots) {
+  const std::filesystem::path file = std::filesystem::absolute(relative);
+  return withWarnings([&] {
+    const Transform t = pose.is_none() ? Transform::Identity() : toTransform(pose);
+    Robot robot(loadRobotFile(file, loadOptions({}, generic_robots), &world->cache));
+    const int index = world->world.addRobot(std::move(robot), file);
+    world->world.setRobotPose(index, t);
+    return RobotView{world, index};
+  });
+}
+
+py::array_t<double> vertices(const Body& body, const std::string& frame) {
+  if (frame != "world" && frame != "body")
+    throw py::value_error(fmt::format("frame '{}': \"world\" or \"body\" expected", frame));
+  const auto& mesh = body.model->mesh;
+  const std::size_t n = mesh ? mesh->vertices.size() : 0;
+  py::array_t<double> out({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  auto a = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector3 p = frame == "world" ? Vector3(body.pose * mesh->vertices[i]) : mesh->vertices[i];
+    for (int k = 0; k < 3; ++k) a(static_cast<py::ssize_t>(i), k) = p[k];
+  }
+  return out;
+}
+
+py::array_t<std::int64_t> triangles(const Body& body) {
+  const auto& mesh = body.model->mesh;
+  const std::size_t n = mesh ? mesh->triangles.size() : 0;
+  py::array_t<std::int64_t> out({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  auto a = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) a(static_cast<py::ssize_t>(i), k) = mesh->triangles[i][k];
+  return out;
+}
+
+void bindBody(py::module_& m) {
+  py::class_<BodyView>(m, "Body",
+                       "A free body of a world: an obstacle or a graspable object. A view: it "
+                       "reads and writes its world.")
+      .def_property_readonly("name", [](const BodyView& b) { return b.body().name; })
+      .def_property_readonly(
+          "index", [](const BodyView& b) { return b.index; },
+          "Its 0-based index among the world's bodies.")
+      .def_property_readonly(
+          "kind", [](const BodyView& b) { return b.body().isDynamic() ? "graspable" : "obstacle"; })
+      .def_property_readonly("is_dynamic", [](const BodyView& b) { return b.body().isDynamic(); })
+      .def_property(
+          "pose", [](const BodyView& b) { return toMatrix(b.body().pose); },
+          [](const BodyView& b, const py::object& pose) { b.body().setPose(toTransform(pose)); },
+          "The body frame in the world, a 4x4 matrix in mm.")
+      .def_property_readonly("file",
+                             [](const BodyView& b) { return b.body().model->file.string(); })
+      .def_property_readonly(
+          "material",
+          [](const BodyView& b) { return std::string(materialName(b.body().model->material)); })
+      .def_property_readonly(
+          "mass", [](const BodyView& b) { return b.body().model->mass; }, "Grams.")
+      .def_property_readonly(
+          "cog", [](const BodyView& b) { return toArray(b.body().model->cog); },
+          "The centre of gravity in the body frame, mm.")
+      .def_property_readonly(
+          "inertia",
+          [](const BodyView& b) {
+            py::array_t<double> out({3, 3});
+            auto a = out.mutable_unchecked<2>();
+            for (int r = 0; r < 3; ++r)
+              for (int c = 0; c < 3; ++c) a(r, c) = b.body().model->inertia(r, c);
+            return out;
+          },
+          "Per unit mass, about the CoG, in body axes (mm^2), as the Body file gives it.")
+      .def_property_readonly(
+          "max_radius", [](const BodyView& b) { return b.body().model->maxRadius; },
+          "The largest CoG-to-vertex distance, mm (the torque scale of the "
+          "grasp wrench space).")
+      .def_property_readonly("triangle_count",
+                             [](const BodyView& b) {
+                               const auto& mesh = b.body().model->mesh;
+                               return mesh ? mesh->triangleCount() : std::size_t{0};
+                             })
+      .def(
+          "vertices",
+          [](const BodyView& b, const std::string& frame) { return vertices(b.body(), frame); },
+          py::arg("frame") = "world", "The mesh's vertices, (N, 3) in mm, world or body frame.")
+      .def(
+          "triangles", [](const BodyView& b) { return triangles(b.body()); },
+          "The mesh's triangles, (M, 3) vertex indices, counter-clockwise seen from outside.")
+      .def("__repr__", [](const BodyView& b) {
+        return fmt::format("<graspkit.Body '{}' ({})>", b.body().name,
+                           b.body().isDynamic() ? "graspable" : "obstacle");
+      });
+}
+
+void bindWorldClass(py::module_& m) {
+  py::class_<WorldHandle, WorldPtr>(m, "World", "Bodies and robots in one frame (mm).")
+      .def(py::init([] { return std::make_shared<WorldHandle>(); }), "An empty world.")
+      .def(
+          "add_object",
+          [](const WorldPtr& w, const std::filesystem::path& file, const py::object& pose) {
+            return addBody(w, file, pose, BodyKind::Graspable);
+          },
+          py::arg("file"), py::arg("pose") = py::none(),
+          "Adds a graspable body from a Body XML or a bare mesh (.iv, .wrl, .off, .stl, .obj, "
+          ".ply).")
+      .def(
+          "add_obstacle",
+          [](const WorldPtr& w, const std::filesystem::path& file, const py::object& pose) {
+            return addBody(w, file, pose, BodyKind::Obstacle);
+          },
+          py::arg("file"), py::arg("pose") = py::none(), "Adds a static body.")
+      .def("add_robot", &addRobot, py::arg("file"), py::arg("pose") = py::none(), py::kw_only(),
+           py::arg("generic_robots") = false,
+           "Adds a robot from a GraspIt! robot XML; its type's plugin is loaded on demand.")
+      .def(
+          "save",
+          [](WorldHandle& w, const std::filesystem::path& file) {
+            saveWorldFile(w.world, file, SaveOptions{.root = file.parent_path()});
+            w.file = std::filesystem::absolute(file);
+          },
+          py::arg("file"),
+          "Writes a GraspIt! world XML, atomically; files below its folder are named relatively.")
+      .def(
+          "clone",
+          [](const WorldHandle& w) {
+            auto copy = std::make_shared<WorldHandle>();
+            copy->world = w.world.clone();
+            copy->file = w.file;
+            return copy;
+          },
+          "An independent copy (meshes are shared, read-only).")
+      .def_property_readonly(
+          "file",
+          [](const WorldHandle& w) -> py::object {
+            if (w.file.empty()) return py::none();
+            return py::str(w.file.string());
+          },
+          "Where the world was loaded from or last saved; None for a new world.")
+      .def_property_readonly("bodies",
+                             [](const WorldPtr& w) {
+                               std::vector<BodyView> out;
+                               for (int i = 0; i < static_cast<int>(w->world.bodies().size()); ++i)
+                                 out.push_back({w, i});
+                               return out;
+                             })
+      .def(
+          "body",
+          [](const WorldPtr& w, const std::string& name) {
+            const auto& bodies = w->world.bodies();
+            for (std::size_t i = 0; i < bodies.size(); ++i)
+              if (bodies[i].name == name) return BodyView{w, static_cast<int>(i)};
+            throw py::key_error(fmt::format("the world has no body named '{}'", name));
+          },
+          py::arg("name"))
+      .def_property_readonly("robots",
+                             [](const WorldPtr& w) {
+                               std::vector<RobotView> out;
+                               for (int i = 0; i < w->world.robotCount(); ++i)
+                                 out.push_back({w, i});
+                               return out;
+                             })
+      .def(
+          "robot",
+          [](const WorldPtr& w, const py::object& which) {
+            return RobotView{w, toRobotIndex(*w, which)};
+          },
+          py::arg("which") = py::none(),
+          "A robot by 0-based index or name; without an argument the world's first hand.")
+      .def(
+          "collides", [](const WorldPtr& w) { return anyCollision(w->world, {}); },
+          "Whether any two bodies that may collide intersect.")
+      .def("__repr__", [](const WorldHandle& w) {
+        return fmt::format("<graspkit.World: {} bodies, {} robots>", w.world.bodies().size(),
+                           w.world.robotCount());
+      });
+
+  m.def(
+      "load_world",
+      [](const std::filesystem::path& file, const std::vector<std::filesystem::path>& roots,
+         bool generic_robots) {
+        return withWarnings([&] {
+          auto handle = std::make_shared<WorldHandle>();
+          handle->world = loadAnyFile(file, loadOptions(roots, generic_robots), &handle->cache);
+          handle->file = std::filesystem::absolute(file);
+          return handle;
+        });
+      },
+      py::arg("file"), py::kw_only(), py::arg("roots") = std::vector<std::filesystem::path>{},
+      py::arg("generic_robots") = false,
+      "Loads a GraspIt! world, robot or body file (or a bare mesh) into a new World. A world's "
+      "<filename>s are looked up below `roots` first, then $GRASPKIT_ROOT, $GRASPIT, then the "
+      "file's folder and its parents.");
+}
+
+}  // namespace
+
+void bindWorld(py::module_& m) {
+  bindBody(m);
+  bindWorldClass(m);
+}
+
+}  // namespace graspkit::python
