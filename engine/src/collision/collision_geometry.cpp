@@ -4,11 +4,15 @@
 
 #include "collision/collision_geometry.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <mutex>
 #include <shared_mutex>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
+#include <fcl/narrowphase/distance.h>
 #include <fmt/format.h>
 
 #include "graspkit/error.hpp"
@@ -43,12 +47,19 @@ std::shared_ptr<const CollisionGeometry> build(const TriangleMesh& mesh) {
   bvh->endModel();
 
   Eigen::AlignedBox3d box;
+  std::vector<char> used(vertex_count, 0);
+  std::vector<Vector3> points;  // the vertices of the kept triangles, once each
   for (const fcl::Triangle& tri : triangles)
-    for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[tri[k]]);
+    for (int k = 0; k < 3; ++k) {
+      box.extend(mesh.vertices[tri[k]]);
+      if (!used[tri[k]]) points.push_back(mesh.vertices[tri[k]]);
+      used[tri[k]] = 1;
+    }
   auto geometry = std::make_shared<CollisionGeometry>();
   geometry->bvh = std::move(bvh);
   geometry->boxCenter = box.center();
   geometry->boxHalfSize = 0.5 * box.sizes();
+  geometry->hull = collision::convexHull(points);
   return geometry;
 }
 
@@ -95,6 +106,85 @@ Cache& cache() {
 }
 
 }  // namespace
+
+namespace {
+
+// The largest extent of a placed hull along a world direction.
+double support(const collision::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
+  const Vector3 local = pose.linear().transpose() * direction;
+  double most = -std::numeric_limits<double>::infinity();
+  for (const Vector3& v : hull.vertices) most = std::max(most, local.dot(v));
+  return most + direction.dot(pose.translation());
+}
+
+// Whether the plane across world axis n has every vertex of a's hull below it and every one of
+// b's above. 1e-9 mm of the gap absorbs rounding in the pose arithmetic (FCL's triangle tests
+// round alike).
+bool separates(const Vector3& n, const CollisionGeometry& a, const Transform& pose_a,
+               const CollisionGeometry& b, const Transform& pose_b) {
+  return support(*a.hull, pose_a, n) + 1e-9 < -support(*b.hull, pose_b, -n);
+}
+
+// What one thread remembers of a pair of meshes between queries (planners and autograsp ask
+// about the same pairs in nearby poses again and again): the last separating axis, in a's body
+// frame, and how many queries to leave to FCL alone after certificates failed. Memory only
+// chooses what to try; every answer is still checked, so stale memory costs time, never truth.
+struct PairMemory {
+  Vector3 axis = Vector3::Zero();
+  int failures = 0;
+  int skip = 0;
+};
+
+PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
+  using Key = std::pair<const CollisionGeometry*, const CollisionGeometry*>;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      return std::hash<const void*>()(k.first) * 31 ^ std::hash<const void*>()(k.second);
+    }
+  };
+  thread_local std::unordered_map<Key, PairMemory, KeyHash> memory;
+  if (memory.size() > 4096) memory.clear();
+  return memory[{&a, &b}];
+}
+
+}  // namespace
+
+bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
+                const Transform& pose_b) {
+  if (!a.hull || !b.hull) return false;
+  // Root bounding volumes apart: FCL's own traversal ends at once, no certificate is worth it.
+  const Transform relative = pose_a.inverse() * pose_b;
+  if (!fcl::overlap(relative.linear(), relative.translation(), a.bvh->getBV(0).bv,
+                    b.bvh->getBV(0).bv))
+    return false;
+  PairMemory& memory = memoryOf(a, b);
+  // The axis that separated them last time, first: nearby poses are usually still apart by it.
+  if (!memory.axis.isZero() && separates(pose_a.linear() * memory.axis, a, pose_a, b, pose_b))
+    return true;
+  // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
+  // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
+  if (memory.skip > 0) {
+    --memory.skip;
+    return false;
+  }
+  fcl::DistanceRequestd request(true);
+  request.gjk_solver_type = fcl::GST_INDEP;
+  fcl::DistanceResultd result;
+  fcl::distance(a.hull->shape.get(), pose_a, b.hull->shape.get(), pose_b, request, result);
+  const Vector3 axis = result.nearest_points[1] - result.nearest_points[0];
+  if (result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite()) {
+    const Vector3 n = axis.normalized();
+    if (separates(n, a, pose_a, b, pose_b)) {
+      memory.axis = pose_a.linear().transpose() * n;
+      memory.failures = 0;
+      return true;
+    }
+  }
+  memory.failures = std::min(memory.failures + 1, 5);
+  memory.skip = (1 << memory.failures) - 1;  // 1, 3, 7, 15, 31 queries... capped below
+  memory.skip = std::min(memory.skip, 16);
+  return false;
+}
 
 std::shared_ptr<const CollisionGeometry> collisionGeometry(
     const std::shared_ptr<const TriangleMesh>& mesh) {

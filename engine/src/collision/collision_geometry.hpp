@@ -1,13 +1,16 @@
 #pragma once
 // The collision geometry of one mesh (internal to the collision module): the FCL
-// bounding-volume hierarchy and the mesh's box in its body frame, for a cheap world-box test
-// before any FCL call.
+// bounding-volume hierarchy, the mesh's box in its body frame, for a cheap world-box test
+// before any FCL call, and its convex hull, which proves most near pairs apart faster than the
+// hierarchy can.
 
 #include <memory>
+#include <optional>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include "collision/convex_hull.hpp"
 #include "graspkit/collision.hpp"
 
 namespace graspkit {
@@ -19,9 +22,10 @@ using BoundingVolume = fcl::OBBRSSd;
 using Bvh = fcl::BVHModel<BoundingVolume>;
 
 struct CollisionGeometry {
-  std::shared_ptr<const Bvh> bvh;  // never null
-  Vector3 boxCenter;               // body frame, mm
-  Vector3 boxHalfSize;             // half extents of the axis-aligned box, mm
+  std::shared_ptr<const Bvh> bvh;             // never null
+  Vector3 boxCenter;                          // body frame, mm
+  Vector3 boxHalfSize;                        // half extents of the axis-aligned box, mm
+  std::optional<collision::ConvexHull> hull;  // of the hierarchy's vertices; none when flat
 };
 
 // The world axis-aligned box of a body-frame box under `pose`: the centre moves with the pose,
@@ -38,5 +42,12 @@ struct WorldBox {
 inline WorldBox worldBox(const CollisionGeometry& geometry, const Transform& pose) {
   return {pose * geometry.boxCenter, pose.linear().cwiseAbs() * geometry.boxHalfSize};
 }
+
+// Whether the convex hulls of two placed meshes are certainly apart, so the meshes cannot touch.
+// FCL's GJK proposes the axis through the hulls' nearest points; the certificate is that every
+// hull vertex of one lies below, and every one of the other above, a plane across that axis,
+// checked vertex by vertex, so GJK's tolerance never decides a collision. False proves nothing.
+bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
+                const Transform& pose_b);
 
 }  // namespace graspkit
