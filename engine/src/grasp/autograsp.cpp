@@ -218,10 +218,13 @@ std::vector<double> interpolate(const std::vector<double>& a, const std::vector<
   return out;
 }
 
-double closestDistance(const World& world, const std::vector<std::pair<BodyRef, BodyRef>>& pairs) {
-  double closest = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : pairs) closest = std::min(closest, distance(world, a, b).distance);
-  return closest;
+// Whether some pair is closer than the contact instant: the bisections' question, answered pair
+// by pair so that the first close pair ends it (the same answer as the smallest distance).
+bool withinContactInstant(const World& world,
+                          const std::vector<std::pair<BodyRef, BodyRef>>& pairs) {
+  return std::any_of(pairs.begin(), pairs.end(), [&](const auto& pair) {
+    return distance(world, pair.first, pair.second).distance < kContactInstant;
+  });
 }
 
 }  // namespace
@@ -294,14 +297,14 @@ AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& mot
         colliding = std::move(now);
       } else {
         lo = mid;
-        found = closestDistance(world, colliding) < kContactInstant;
+        found = withinContactInstant(world, colliding);
       }
     }
     if (!found && lo == 0.0) {
       // Every bisection point collided: the step started (free) so close to contact that no
       // fraction of it is free. Then the start itself is the contact instant.
       closing.apply(from);
-      found = closestDistance(world, colliding) < kContactInstant;
+      found = withinContactInstant(world, colliding);
     }
     if (!found) {
       closing.apply(interpolate(from, to, lo));
@@ -395,7 +398,7 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
         pairs = std::move(now);
       } else {
         lo = mid;
-        if (closestDistance(world, pairs) < kContactInstant) {
+        if (withinContactInstant(world, pairs)) {
           result.end = MotionEnd::Contact;
           break;
         }
