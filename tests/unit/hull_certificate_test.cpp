@@ -35,9 +35,11 @@ TEST(ConvexHull, OfACubeWithInnerPointsIsItsCorners) {
   points.emplace_back(0.2, 0.7, 0.1);
   const auto hull = collision::convexHull(points);
   ASSERT_TRUE(hull);
-  EXPECT_EQ(hull->vertices.size(), 8u);
-  for (const Vector3& v : hull->vertices)  // a corner: every coordinate 0 or 1
+  ASSERT_EQ(hull->vertices.cols(), 8);
+  for (Eigen::Index i = 0; i < 8; ++i) {  // a corner: every coordinate 0 or 1
+    const Vector3 v = hull->vertices.col(i);
     EXPECT_TRUE(((v.array() == 0.0) || (v.array() == 1.0)).all()) << v.transpose();
+  }
   EXPECT_EQ(hull->shape->getFaceCount(), 12);  // triangulated: 2 per square face
 }
 

@@ -112,9 +112,7 @@ namespace {
 // The largest extent of a placed hull along a world direction.
 double support(const collision::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
   const Vector3 local = pose.linear().transpose() * direction;
-  double most = -std::numeric_limits<double>::infinity();
-  for (const Vector3& v : hull.vertices) most = std::max(most, local.dot(v));
-  return most + direction.dot(pose.translation());
+  return (local.transpose() * hull.vertices).maxCoeff() + direction.dot(pose.translation());
 }
 
 // Whether the plane across world axis n has every vertex of a's hull below it and every one of

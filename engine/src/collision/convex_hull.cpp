@@ -50,7 +50,9 @@ std::optional<ConvexHull> convexHull(const std::vector<Vector3>& points) {
       FOREACHvertex_(facet->vertices) faces->push_back(index.at(qh_pointid(qh, vertex->point)));
       ++face_count;
     }
-    hull->vertices = *vertices;
+    hull->vertices.resize(3, static_cast<Eigen::Index>(vertices->size()));
+    for (std::size_t i = 0; i < vertices->size(); ++i)
+      hull->vertices.col(static_cast<Eigen::Index>(i)) = (*vertices)[i];
     hull->shape = std::make_shared<const fcl::Convexd>(vertices, face_count, faces);
   }
   qh_freeqhull(qh, !qh_ALL);

@@ -13,7 +13,7 @@
 namespace graspkit::collision {
 
 struct ConvexHull {
-  std::vector<Vector3> vertices;              // body frame: some of the mesh's vertices, exactly
+  Eigen::Matrix3Xd vertices;  // body frame, one per column: some of the mesh's vertices, exactly
   std::shared_ptr<const fcl::Convexd> shape;  // the same polytope for FCL's GJK
 };
 
