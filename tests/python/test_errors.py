@@ -148,3 +148,27 @@ def test_engine_warnings_are_python_warnings_of_their_kind(tmp_path, models):
         warnings.simplefilter("error", graspkit.GraspkitWarning)
         with pytest.raises(graspkit.UnknownElementWarning):
             graspkit.World().add_object(body)
+
+
+def test_values_numpy_cannot_convert_raise_instead_of_crashing(graspit_data):
+    # A str or an object where a pose, DOFs or points belong: NumPy cannot make numbers of it
+    # (this once crashed the interpreter for poses).
+    world = graspkit.load_world(graspit_data / "worlds/plannerMug.xml")
+    hand = world.robot()
+    for bad in ("abc", None, object()):
+        with pytest.raises(ValueError, match="4x4"):
+            hand.pose = bad
+        with pytest.raises(ValueError, match="1-D sequence"):
+            hand.set_dofs(bad)
+        with pytest.raises(ValueError, match=r"\(N, 3\)"):
+            graspkit.RayScene(world).intersect(bad, bad)
+        with pytest.raises(ValueError, match=r"\(N, 3\)"):
+            graspkit.RayScene(world).nearest(bad)
+    with pytest.raises(ValueError, match="translation"):
+        graspkit.pose("abc", (1, 0, 0, 0))
+    with pytest.raises(ValueError, match="not a finite number"):
+        hand.inverse_kinematics(np.full((4, 4), np.nan))
+    with pytest.raises(graspkit.Error, match="not a regular file"):
+        world.add_object("/")
+    with pytest.raises(graspkit.Error, match="Is a directory"):
+        world.save("/tmp")

@@ -13,7 +13,7 @@ namespace {
 constexpr double kRigidTolerance = 1e-6;
 
 Transform fromMatrix(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
-  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+  if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
     throw py::value_error("a pose is a 4x4 matrix or a (translation, quaternion) pair");
   Eigen::Matrix4d m;
   for (int r = 0; r < 4; ++r)
