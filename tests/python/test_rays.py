@@ -78,3 +78,30 @@ def test_bad_batches_raise_before_tracing(box_scene):
         scene.intersect([[0, 0, 0]], [[1, 0, 0]], max_distance=-1)
     with pytest.raises(ValueError, match="another world"):
         scene.update(graspkit.World())
+
+
+def test_queries_in_threads_while_the_scene_updates(models):
+    # Queries release the GIL; update() waits for them, so every answer is one of the two poses.
+    import threading
+    world = graspkit.World()
+    box = world.add_object(models / "objects/box.xml", graspkit.pose((100, 0, 0)))
+    scene = graspkit.RayScene(world)
+    origins = np.zeros((20000, 3))
+    directions = np.tile((1.0, 0, 0), (20000, 1))
+    seen = set()
+    stop = threading.Event()
+
+    def query():
+        while not stop.is_set():
+            seen.update(np.unique(np.round(scene.intersect(origins, directions).distance, 6)))
+
+    workers = [threading.Thread(target=query) for _ in range(2)]
+    for w in workers:
+        w.start()
+    for i in range(50):
+        box.pose = graspkit.pose((100 + 100 * (i % 2), 0, 0))
+        scene.update(world)
+    stop.set()
+    for w in workers:
+        w.join()
+    assert seen <= {70.0, 170.0} and seen

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <shared_mutex>
 
 #include <fmt/format.h>
 
@@ -19,6 +21,8 @@ struct BoundRayScene {
   WorldPtr world;  // the world it was built from (for body names); it does not follow changes
   RayScene scene;
   std::vector<std::string> names;
+  // Queries run without the GIL: they share the scene, update() takes it alone.
+  std::shared_ptr<std::shared_mutex> mutex = std::make_shared<std::shared_mutex>();
 };
 
 // One batch's answers, as NumPy arrays; rows without an answer hold -1, inf and NaN.
@@ -118,6 +122,7 @@ RayHits intersect(const BoundRayScene& s, const py::handle& origins_in,
   const double* d = directions.data();
   checkRays(o, d, n);
   py::gil_scoped_release release;
+  std::shared_lock lock(*s.mutex);
   // In chunks that stay in the cache, so a batch of millions needs no second copy of itself.
   constexpr std::size_t kChunk = 256;
   Ray rays[kChunk];
@@ -154,6 +159,7 @@ RayHits nearest(const BoundRayScene& s, const py::handle& points_in, double max_
   RayHits hits(points.shape(0));
   const HitColumns out = columns(hits, s.scene);
   py::gil_scoped_release release;
+  std::shared_lock lock(*s.mutex);
   for (std::size_t i = 0; i < n; ++i) {
     const auto found =
         s.scene.nearestSurfacePoint(Vector3(p[3 * i], p[3 * i + 1], p[3 * i + 2]), max_distance);
@@ -180,6 +186,7 @@ double cppIntersectSeconds(const BoundRayScene& s, const py::handle& origins_in,
   }
   std::vector<std::optional<RayHit>> hits(rays.size());
   py::gil_scoped_release release;
+  std::shared_lock lock(*s.mutex);
   const auto start = std::chrono::steady_clock::now();
   s.scene.intersect(rays, hits);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -219,6 +226,9 @@ void bindRays(py::module_& m) {
           [](BoundRayScene& s, const WorldPtr& world) {
             if (world.get() != s.world.get())
               throw py::value_error("update: the scene was built from another world");
+            // With the GIL held, so the world does not change meanwhile; queries in flight
+            // hold no GIL, so waiting for them here cannot deadlock.
+            std::unique_lock lock(*s.mutex);
             s.scene.update(world->world);
           },
           py::arg("world"), "Moves the scene's bodies to where the world has them now.")
