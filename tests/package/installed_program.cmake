@@ -8,13 +8,8 @@
 
 set(install ${WORK_DIR}/install)
 set(moved ${WORK_DIR}/moved)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
-# The user's environment must not choose the roots or plugins here.
-unset(ENV{GRASPKIT_ROOT})
-unset(ENV{GRASPIT})
-unset(ENV{GRASPKIT_PLUGIN_PATH})
+fresh_install_test()
 
 # 1.
 run("cmake --install" COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${install})

@@ -5,12 +5,8 @@
 # Arguments: -DBUILD_DIR, -DWORK_DIR, -DPYTHON (the interpreter), -DPYTHON_DIR (relative).
 
 set(install ${WORK_DIR}/install)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
-unset(ENV{GRASPKIT_ROOT})
-unset(ENV{GRASPIT})
-unset(ENV{GRASPKIT_PLUGIN_PATH})
+fresh_install_test()
 set(ENV{PYTHONDONTWRITEBYTECODE} 1)
 
 # 1.
