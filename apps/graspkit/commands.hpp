@@ -130,6 +130,53 @@ void addPlanCommand(CLI::App& app, PlanOptions& options);
 // terminal, a plain line every few seconds otherwise (unless quiet).
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out);
 
+struct RenderOptions {
+  std::filesystem::path input;  // a world XML or a plan JSON
+  std::filesystem::path out;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  std::string size = "640x480";
+  std::string camera = "auto";
+  bool contacts = false;
+  int grasp = 0;  // 1-based; 0: every grasp (up to --top)
+  int top = 20;
+  int columns = 0;
+  int samples = 1;
+};
+
+// The views --camera names.
+inline constexpr const char* kCameraNames = "auto, world, iso, +x, -x, +y, -y, +z, -z";
+
+void addRenderCommand(CLI::App& app, RenderOptions& options);
+// Writes the PNG atomically: one view of a world, a grasp, or a contact sheet of a plan's grasps
+// (rank order by rows).
+int runRender(const RenderOptions& options, std::ostream& out);
+
+struct ExportOptions {
+  std::filesystem::path input;
+  std::filesystem::path gltf;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  int grasp = 0;
+  int top = 0;
+};
+
+void addExportCommand(CLI::App& app, ExportOptions& options);
+// Writes a binary glTF (.glb): one scene for a world, one per grasp for a plan.
+int runExport(const ExportOptions& options, std::ostream& out);
+
+struct ViewOptions {
+  std::filesystem::path input;
+  std::filesystem::path html;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  int top = 0;
+};
+
+void addViewCommand(CLI::App& app, ViewOptions& options);
+// Writes one self-contained HTML page (three.js inside): orbit the scene, step through grasps.
+int runView(const ViewOptions& options, std::ostream& out);
+
 // The options every command that loads files shares: --root and --generic-robots. With no
 // --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own models,
 // <prefix>/share/graspkit/models.

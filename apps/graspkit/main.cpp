@@ -54,6 +54,9 @@ struct CommandOptions {
   graspkit::cli::TestOptions test;
   graspkit::cli::PlanOptions plan;
   graspkit::cli::ConvertOptions convert;
+  graspkit::cli::RenderOptions render;
+  graspkit::cli::ExportOptions exportScene;
+  graspkit::cli::ViewOptions view;
 };
 
 int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
@@ -66,6 +69,9 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("test")) return runTest(o.test, quiet, verbose, std::cout);
     if (app.got_subcommand("plan")) return runPlan(o.plan, quiet, std::cout);
     if (app.got_subcommand("convert")) return runConvert(o.convert, quiet, std::cout);
+    if (app.got_subcommand("render")) return runRender(o.render, std::cout);
+    if (app.got_subcommand("export")) return runExport(o.exportScene, std::cout);
+    if (app.got_subcommand("view")) return runView(o.view, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -115,6 +121,9 @@ int main(int argc, char** argv) {
   graspkit::cli::addTestCommand(app, options.test);
   graspkit::cli::addPlanCommand(app, options.plan);
   graspkit::cli::addConvertCommand(app, options.convert);
+  graspkit::cli::addRenderCommand(app, options.render);
+  graspkit::cli::addExportCommand(app, options.exportScene);
+  graspkit::cli::addViewCommand(app, options.view);
 
   try {
     app.parse(argc, argv);

@@ -10,9 +10,21 @@
 
 namespace graspkit {
 
+// A surface colour: red, green and blue in [0, 1], as Inventor files give them.
+struct Colour {
+  float r = 0.8f;
+  float g = 0.8f;
+  float b = 0.8f;
+  friend bool operator==(const Colour&, const Colour&) = default;
+};
+
 struct TriangleMesh {
   std::vector<Vector3> vertices;                        // mm, body frame
   std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
+  // The diffuse colour of each triangle where the file gives colours (Inventor and VRML
+  // materials); empty otherwise, and pictures then colour the body by its material. Geometry
+  // queries never look at it.
+  std::vector<Colour> triangleColours;
 
   std::size_t triangleCount() const { return triangles.size(); }
   bool empty() const { return triangles.empty(); }

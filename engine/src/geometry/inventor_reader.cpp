@@ -27,6 +27,7 @@
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>
 #include <Inventor/SoPath.h>
+#include <Inventor/SbColor.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
 #include <Inventor/actions/SoSearchAction.h>
@@ -163,6 +164,9 @@ constexpr std::size_t kMaxTriangles = 10'000'000;
 struct TriangleCollector {
   VertexWelder welder;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<Colour> colours;  // one per triangle: the diffuse colour in effect
+  const SoNode* colourShape = nullptr;  // the shape `colour` was read for
+  Colour colour;
   bool non_finite = false;
   bool too_many = false;
 };
@@ -201,6 +205,15 @@ void onTriangle(void* data, SoCallbackAction* action, const SoPrimitiveVertex* v
   // mesh keeps outward winding and a positive volume.
   if (determinant3x3(model) < 0) std::swap(triangle[1], triangle[2]);
   collector.triangles.push_back(triangle);
+  // Material bindings are pruned, so one diffuse colour holds for a whole shape: read it once.
+  if (action->getCurPathTail() != collector.colourShape) {
+    collector.colourShape = action->getCurPathTail();
+    SbColor ambient, diffuse, specular, emission;
+    float shininess = 0.0f, transparency = 0.0f;
+    action->getMaterial(ambient, diffuse, specular, emission, shininess, transparency, 0);
+    collector.colour = {diffuse[0], diffuse[1], diffuse[2]};
+  }
+  collector.colours.push_back(collector.colour);
 }
 
 // Coin's messages end with "Occurred at line N in <file>"; the line goes into the error's
@@ -720,6 +733,10 @@ TriangleMesh readInventor(const std::filesystem::path& path) {
   TriangleMesh mesh;
   mesh.vertices = collector.welder.vertices();
   mesh.triangles = std::move(collector.triangles);
+  // A scene without a material node shows Coin's default grey everywhere: no colours of its own.
+  const bool coloured = std::any_of(collector.colours.begin(), collector.colours.end(),
+                                    [](const Colour& c) { return !(c == Colour{}); });
+  if (coloured) mesh.triangleColours = std::move(collector.colours);
   return mesh;
 }
 

@@ -1,0 +1,39 @@
+// graspkit export: a world, or a plan's grasps, as binary glTF.
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "graspkit/io/gltf_file.hpp"
+#include "scene_frames.hpp"
+
+namespace graspkit::cli {
+
+void addExportCommand(CLI::App& app, ExportOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "export", "Write a world, or a plan's grasps (one scene each), as binary glTF (.glb)");
+  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+      ->required()
+      ->check(existingFile());
+  cmd->add_option("--gltf", options.gltf, "The .glb file to write")->required();
+  cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--top", options.top, "Plans: the first N grasps (all when not given)")
+      ->check(CLI::PositiveNumber);
+  addLoadFlags(*cmd, options.roots, options.genericRobots);
+}
+
+int runExport(const ExportOptions& options, std::ostream& out) {
+  const std::vector<SceneFrame> frames =
+      loadFrames({options.input, options.roots, options.genericRobots, true, options.grasp,
+                  options.top});
+  std::vector<std::string> extras;
+  for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
+  std::vector<GltfScene> scenes;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
+  saveGltf(scenes, options.gltf);
+  out << fmt::format("wrote {} ({} scene{})\n", options.gltf.string(), scenes.size(),
+                     scenes.size() == 1 ? "" : "s");
+  return 0;
+}
+
+}  // namespace graspkit::cli

@@ -1,0 +1,107 @@
+// graspkit render: a PNG of a world or of a plan's grasps (a contact sheet, or one grasp).
+#include <cmath>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/render.hpp"
+#include "scene_frames.hpp"
+
+namespace graspkit::cli {
+
+namespace {
+
+std::pair<int, int> parseSize(const std::string& text) {
+  static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, kSize))
+    throw Error(fmt::format("--size: '{}' is not WIDTHxHEIGHT, e.g. 640x480", text));
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw Error(fmt::format("--size: {}x{}; each side must be 1 to 16384 pixels", w, h));
+  return {w, h};
+}
+
+// The direction from the scene to the camera for --camera's named views.
+std::optional<Vector3> viewDirection(const std::string& name) {
+  if (name == "iso" || name == "auto") return Vector3(1.0, -1.3, 0.9);
+  if (name == "+x") return Vector3::UnitX();
+  if (name == "-x") return -Vector3::UnitX();
+  if (name == "+y") return Vector3::UnitY();
+  if (name == "-y") return -Vector3::UnitY();
+  if (name == "+z") return Vector3::UnitZ();
+  if (name == "-z") return -Vector3::UnitZ();
+  return std::nullopt;
+}
+
+}  // namespace
+
+ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect) {
+  if (camera == "world" || (camera == "auto" && frame.world.camera() && !frame.fromPlan)) {
+    if (!frame.world.camera())
+      throw Error("--camera world: the world file has no <camera>; use auto, iso or an axis");
+    return viewCameraFrom(*frame.world.camera());
+  }
+  const std::optional<Vector3> direction = viewDirection(camera);
+  if (!direction) throw Error(fmt::format("--camera: '{}' is not one of {}", camera, kCameraNames));
+  return frameBodies(frame.world, frame.focus, *direction, aspect);
+}
+
+void addRenderCommand(CLI::App& app, RenderOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Ray-cast a picture (PNG) of a world, or of a plan's grasps as a contact sheet");
+  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+      ->required()
+      ->check(existingFile());
+  cmd->add_option("--out", options.out, "The PNG to write")->required();
+  cmd->add_option("--size", options.size, "Picture size, WIDTHxHEIGHT (a contact sheet's tile)")
+      ->capture_default_str();
+  cmd->add_option("--camera", options.camera,
+                  std::string("The view: ") + kCameraNames +
+                      " (auto: a world file's <camera> if it has one, else iso)")
+      ->capture_default_str();
+  cmd->add_flag("--contacts", options.contacts,
+                "Mark the hand's contacts with the object and their friction cones");
+  cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--top", options.top, "Plans: the first N grasps on the sheet")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--columns", options.columns, "Plans: tiles a row on the sheet (0: square)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--samples", options.samples, "Rays per pixel side (2: 4 rays, smoother edges)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  addLoadFlags(*cmd, options.roots, options.genericRobots);
+}
+
+int runRender(const RenderOptions& options, std::ostream& out) {
+  const auto [width, height] = parseSize(options.size);
+  FrameSource source{options.input, options.roots, options.genericRobots, options.contacts,
+                     options.grasp, options.top};
+  const std::vector<SceneFrame> frames = loadFrames(source);
+  std::vector<Image> tiles;
+  for (const SceneFrame& frame : frames) {
+    RenderRequest request;
+    request.width = width;
+    request.height = height;
+    request.samples = options.samples;
+    request.camera = chooseCamera(frame, options.camera, static_cast<double>(width) / height);
+    request.contacts = frame.contacts;
+    tiles.push_back(render(frame.world, request));
+  }
+  const int columns =
+      options.columns > 0
+          ? options.columns
+          : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
+  const Image image = tiles.size() == 1 ? tiles.front() : tileImages(tiles, columns);
+  writePng(image, options.out);
+  out << fmt::format("wrote {} ({}x{}, {} {})\n", options.out.string(), image.width, image.height,
+                     tiles.size(), tiles.size() == 1 ? "view" : "grasps, rank order by rows");
+  return 0;
+}
+
+}  // namespace graspkit::cli

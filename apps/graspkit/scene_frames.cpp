@@ -1,0 +1,167 @@
+#include "scene_frames.hpp"
+
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "graspkit/error.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/io/world_file.hpp"
+
+namespace graspkit::cli {
+
+namespace {
+
+using nlohmann::json;
+
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(SourceLocation{file.string(), 0, {}}, "cannot open the file");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The hand and object of a world: its first hand (or first robot) and first graspable body.
+std::vector<BodyRef> focusOf(const World& world, std::optional<int>& hand,
+                             std::optional<BodyRef>& object) {
+  hand = world.firstHand();
+  if (!hand && world.robotCount() > 0) hand = 0;
+  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
+    if (world.bodies()[static_cast<std::size_t>(i)].isDynamic()) {
+      object = BodyRef::body(i);
+      break;
+    }
+  }
+  std::vector<BodyRef> focus;
+  for (const BodyRef& body : worldBodies(world)) {
+    const bool ofHand = body.kind == BodyRef::Kind::Link && hand && body.index == *hand;
+    if (ofHand || (object && body == *object)) focus.push_back(body);
+  }
+  return focus;
+}
+
+SceneFrame frameOf(std::string name, World world, bool contacts) {
+  SceneFrame frame{std::move(name), std::move(world), {}, {}, {}, false};
+  std::optional<int> hand;
+  std::optional<BodyRef> object;
+  frame.focus = focusOf(frame.world, hand, object);
+  if (contacts && hand && object) {
+    const Grasp grasp = analyzeGrasp(frame.world, *hand, *object);
+    frame.contacts = grasp.contacts;
+    frame.summary = {{"epsilon", grasp.epsilon},
+                     {"volume", grasp.volume},
+                     {"force_closure", grasp.forceClosure},
+                     {"contacts", grasp.contacts.size()}};
+  }
+  return frame;
+}
+
+const json& member(const json& j, const char* key, const std::filesystem::path& file) {
+  if (!j.is_object() || !j.contains(key))
+    throw Error(SourceLocation{file.string(), 0, key}, fmt::format("the plan has no '{}'", key));
+  return j.at(key);
+}
+
+Transform poseFrom(const json& pose) {
+  const auto t = pose.at("translation").get<std::vector<double>>();
+  const auto q = pose.at("quaternion").get<std::vector<double>>();
+  if (t.size() != 3 || q.size() != 4) throw Error("a pose needs 3 + 4 numbers");
+  return makeTransform(Vector3(t[0], t[1], t[2]), Quaternion(q[0], q[1], q[2], q[3]).normalized());
+}
+
+// A plan without world files: its world, with the hand moved to each grasp's closed posture.
+World graspWorldFromPlan(const World& base, const json& plan, const json& grasp) {
+  World world = base.clone();
+  const std::string robotName = plan.value("robot", "");
+  const std::optional<int> robot = world.findRobot(robotName);
+  if (!robot) throw Error(fmt::format("the plan's robot '{}' is not in its world", robotName));
+  const bool closed = grasp.contains("closed_pose");
+  world.setRobotPose(*robot, poseFrom(grasp.at(closed ? "closed_pose" : "pose").at("world")));
+  const auto dofs = grasp.at(closed ? "closed_dofs" : "dofs").get<std::vector<double>>();
+  world.setDofValues(*robot, dofs);
+  return world;
+}
+
+std::vector<SceneFrame> planFrames(const FrameSource& source) {
+  const std::filesystem::path& file = source.input;
+  const json plan = json::parse(readText(file), nullptr, false);
+  if (plan.is_discarded())
+    throw Error(SourceLocation{file.string(), 0, {}}, "not valid JSON (a plan from plan --json)");
+  const json& grasps = member(plan, "grasps", file);
+  if (!grasps.is_array()) throw Error(SourceLocation{file.string(), 0, "grasps"}, "not a list");
+  const int count = static_cast<int>(grasps.size());
+  if (source.grasp > count || source.grasp < 0)
+    throw Error(fmt::format("--grasp {}: the plan {} has {} grasps (1 to {})", source.grasp,
+                            file.string(), count, count));
+  int first = 0, last = count;
+  if (source.grasp > 0) first = source.grasp - 1, last = source.grasp;
+  if (source.grasp == 0 && source.top > 0) last = std::min(count, source.top);
+  // The worlds plan --out wrote name their models as the planned world did (relative to its
+  // root), so that world's folder and its parents are searched after --root.
+  std::filesystem::path planned = member(plan, "world", file).get<std::string>();
+  if (!std::filesystem::exists(planned)) planned = file.parent_path() / planned;
+  LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
+  for (auto folder = std::filesystem::absolute(planned).parent_path();;
+       folder = folder.parent_path()) {
+    load.roots.push_back(folder);
+    if (folder == folder.parent_path()) break;
+  }
+  const bool hasWorlds = plan.contains("world_files") && plan["world_files"].is_array() &&
+                         static_cast<int>(plan["world_files"].size()) == count;
+  std::optional<World> base;
+  if (!hasWorlds) base = loadWorldFile(planned, load);
+  std::vector<SceneFrame> frames;
+  for (int i = first; i < last; ++i) {
+    const json& grasp = grasps[static_cast<std::size_t>(i)];
+    World world = hasWorlds ? World{} : graspWorldFromPlan(*base, plan, grasp);
+    if (hasWorlds) {
+      // plan --out writes the worlds beside the JSON; the names it lists are as it was run.
+      const std::filesystem::path listed = plan["world_files"][static_cast<std::size_t>(i)];
+      world = loadWorldFile(file.parent_path() / listed.filename(), load);
+    }
+    SceneFrame frame = frameOf(fmt::format("grasp {}", i + 1), std::move(world), source.contacts);
+    for (const char* key : {"energy", "epsilon", "volume", "contacts", "force_closure"})
+      if (grasp.contains(key)) frame.summary[key] = grasp[key];
+    frame.summary["rank"] = i + 1;
+    frame.fromPlan = true;
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+}  // namespace
+
+std::string frameExtras(const SceneFrame& frame) {
+  json contacts = json::array();
+  for (const Contact& c : frame.contacts) {
+    const Vector3 p = c.position2 / 1000.0;
+    contacts.push_back({{"point", {p.x(), p.y(), p.z()}},
+                        {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
+                        {"mu", c.mu}});
+  }
+  return json{{"summary", frame.summary.is_null() ? json::object() : frame.summary},
+              {"contacts", contacts}}
+      .dump();
+}
+
+bool isPlanFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  char c = 0;
+  while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+  }
+  return c == '{';
+}
+
+std::vector<SceneFrame> loadFrames(const FrameSource& source) {
+  if (isPlanFile(source.input)) return planFrames(source);
+  if (source.grasp > 0)
+    throw Error(fmt::format("--grasp picks a grasp of a plan; {} is a world",
+                            source.input.string()));
+  const LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
+  std::vector<SceneFrame> frames;
+  frames.push_back(
+      frameOf(source.input.stem().string(), loadWorldFile(source.input, load), source.contacts));
+  return frames;
+}
+
+}  // namespace graspkit::cli

@@ -1,0 +1,137 @@
+// The graspkit view page: the scenes of an embedded binary glTF (one per world or grasp, with
+// each grasp's figures and contacts in the scene's extras), shown one at a time with orbit
+// controls. Bundled with three.js into one script at build time; the page needs no network.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+function embedded(id) {
+  const element = document.getElementById(id);
+  if (!element) throw new Error(`the page has no #${id}`);
+  return element.textContent.trim();
+}
+
+function base64ToBuffer(text) {
+  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  return bytes.buffer;
+}
+
+function formatNumber(value) {
+  return typeof value === 'number' ? value.toPrecision(5) : String(value);
+}
+
+// A contact: a sphere on the object and its friction cone (apex at the point, along the normal).
+function contactMarker(contact, size) {
+  const group = new THREE.Group();
+  const point = new THREE.Vector3(...contact.point);
+  const normal = new THREE.Vector3(...contact.normal).normalize();
+  const sphere = new THREE.Mesh(new THREE.SphereGeometry(size * 0.18, 16, 12),
+    new THREE.MeshStandardMaterial({ color: 0xd91a1a }));
+  sphere.position.copy(point);
+  group.add(sphere);
+  const length = size;
+  const cone = new THREE.ConeGeometry(length * Math.max(contact.mu, 0.01), length, 24, 1, true);
+  cone.translate(0, -length / 2, 0);  // apex at the origin, opening along -y
+  const mesh = new THREE.Mesh(cone, new THREE.MeshStandardMaterial({
+    color: 0xff5a33, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthWrite: false,
+  }));
+  mesh.position.copy(point);
+  mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, -1, 0), normal);
+  group.add(mesh);
+  return group;
+}
+
+function start() {
+  const meta = JSON.parse(embedded('graspkit-meta'));
+  const canvas = document.getElementById('view');
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(1);
+  const world = new THREE.Scene();
+  world.background = new THREE.Color(0xffffff);
+  world.add(new THREE.HemisphereLight(0xffffff, 0x666666, 1.6));
+  const camera = new THREE.PerspectiveCamera(meta.camera.fov, 1, 0.0005, 1000);
+  const headlight = new THREE.DirectionalLight(0xffffff, 1.8);
+  headlight.position.set(-0.4, 0.6, 1.0);
+  camera.add(headlight);
+  world.add(camera);
+  const controls = new OrbitControls(camera, canvas);
+  camera.position.fromArray(meta.camera.position);
+  camera.up.fromArray(meta.camera.up);
+  controls.target.fromArray(meta.camera.target);
+  controls.update();
+
+  const panel = {
+    name: document.getElementById('name'),
+    figures: document.getElementById('figures'),
+    contacts: document.getElementById('show-contacts'),
+  };
+  const state = { scenes: [], index: 0, shown: null, markers: null };
+
+  function draw() {
+    const width = canvas.clientWidth, height = canvas.clientHeight;
+    if (canvas.width !== width || canvas.height !== height) {
+      renderer.setSize(width, height, false);
+      camera.aspect = width / height;
+      camera.updateProjectionMatrix();
+    }
+    renderer.render(world, camera);
+  }
+
+  function show(index) {
+    if (state.scenes.length === 0) return;
+    state.index = ((index % state.scenes.length) + state.scenes.length) % state.scenes.length;
+    if (state.shown) world.remove(state.shown);
+    if (state.markers) world.remove(state.markers);
+    const scene = state.scenes[state.index];
+    state.shown = scene;
+    world.add(scene);
+    const extras = scene.userData || {};
+    state.markers = new THREE.Group();
+    for (const contact of extras.contacts || [])
+      state.markers.add(contactMarker(contact, meta.markerSize));
+    state.markers.visible = panel.contacts.checked;
+    world.add(state.markers);
+    panel.name.textContent = `${scene.name || 'scene'} (${state.index + 1} of ${state.scenes.length})`;
+    const figures = [];
+    for (const key of ['energy', 'epsilon', 'volume', 'contacts', 'force_closure'])
+      if (key in (extras.summary || {})) figures.push(`${key} ${formatNumber(extras.summary[key])}`);
+    panel.figures.textContent = figures.join(' · ');
+    draw();
+  }
+
+  // Where a world point (metres) lands on the canvas, for tests and tools.
+  function project(point) {
+    const v = new THREE.Vector3(...point).project(camera);
+    return [(v.x + 1) / 2 * canvas.clientWidth, (1 - v.y) / 2 * canvas.clientHeight];
+  }
+
+  document.getElementById('previous').addEventListener('click', () => show(state.index - 1));
+  document.getElementById('next').addEventListener('click', () => show(state.index + 1));
+  panel.contacts.addEventListener('change', () => {
+    if (state.markers) state.markers.visible = panel.contacts.checked;
+    draw();
+  });
+  window.addEventListener('keydown', (event) => {
+    if (event.key === 'ArrowRight' || event.key === 'n') show(state.index + 1);
+    if (event.key === 'ArrowLeft' || event.key === 'p') show(state.index - 1);
+  });
+  window.addEventListener('resize', draw);
+  controls.addEventListener('change', draw);
+
+  new GLTFLoader().parse(base64ToBuffer(embedded('graspkit-scene')), '', (gltf) => {
+    state.scenes = gltf.scenes;
+    show(0);
+    window.graspkitViewer = {
+      ready: true,
+      count: state.scenes.length,
+      show: (index) => show(index),
+      current: () => state.index,
+      project,
+    };
+  }, (error) => {
+    panel.name.textContent = `cannot read the scene: ${error.message || error}`;
+    console.error(error);
+  });
+}
+
+start();

@@ -1,0 +1,77 @@
+#pragma once
+// Pictures of a world, ray cast through the engine's own Embree scene (no GPU, no display):
+// bodies shaded in their file colours (or their material's), and optionally a grasp's contacts
+// as markers with their friction cones.
+//
+// Cameras follow Inventor's convention, as GraspIt!'s <camera> does: the camera looks along -z
+// of its frame with +y up, and heightAngle is the full vertical field of view.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "graspkit/contact.hpp"
+#include "graspkit/image.hpp"
+#include "graspkit/material.hpp"
+#include "graspkit/mesh.hpp"
+#include "graspkit/transform.hpp"
+
+namespace graspkit {
+
+class World;
+struct Camera;
+
+struct ViewCamera {
+  Vector3 position = Vector3::Zero();               // world, mm
+  Quaternion orientation = Quaternion::Identity();  // camera frame in the world
+  double heightAngle = 0.785398163397448;           // radians: Inventor's default, pi/4
+};
+
+// The camera of a world file's <camera> (Inventor's default height angle).
+ViewCamera viewCameraFrom(const Camera& camera);
+
+struct BoundingSphere {
+  Vector3 centre = Vector3::Zero();  // world, mm
+  double radius = 0.0;               // mm
+};
+
+// A sphere around the vertices of `bodies` in the world (every body when empty), centred on
+// their bounding box; radius 100 mm around the origin when there are none.
+BoundingSphere boundingSphere(const World& world, std::span<const BodyRef> bodies);
+
+// A camera on the side `direction` points to (world), looking back at the bounding sphere of
+// `bodies` (every body of the world when empty) so that the sphere fills the view of an
+// image `aspect` (width / height) wide. Up is the world's +z, or +y when looking along z.
+ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies, const Vector3& direction,
+                       double aspect);
+
+// Where world point `point` lands in a width x height picture: x right, y down, in pixels, the
+// centre of the top-left pixel at (0.5, 0.5). nullopt for a point behind the camera.
+std::optional<Eigen::Vector2d> projectPoint(const ViewCamera& camera, int width, int height,
+                                            const Vector3& point);
+
+struct RenderRequest {
+  int width = 640;
+  int height = 480;
+  ViewCamera camera;
+  Colour background{1.0f, 1.0f, 1.0f};
+  // Contacts to mark: a sphere at each contact's point on body2 (the object, for a grasp's
+  // contacts) and its friction cone, apex at the point, opening along the normal with half
+  // angle atan(mu). Markers show through robot links (they lie under the fingertips) but not
+  // through other bodies. Sizes are in mm; 0 picks 3 % and 15 % of the scene's radius.
+  std::vector<Contact> contacts;
+  double markerRadius = 0.0;
+  double coneLength = 0.0;
+  // Samples per pixel along each axis (1: one ray a pixel; 2: four, averaged).
+  int samples = 1;
+};
+
+// Renders `world` as the request says. Throws graspkit::Error for a size outside 1..16384, a
+// non-finite camera, or samples outside 1..4.
+Image render(const World& world, const RenderRequest& request);
+
+// Surface colours a body gets when its file gives none, by material (glass, metal, ...).
+Colour materialColour(Material material);
+
+}  // namespace graspkit
