@@ -144,9 +144,6 @@ struct RenderOptions {
   int samples = 1;
 };
 
-// The views --camera names.
-inline constexpr const char* kCameraNames = "auto, world, iso, +x, -x, +y, -y, +z, -z";
-
 void addRenderCommand(CLI::App& app, RenderOptions& options);
 // Writes the PNG atomically: one view of a world, a grasp, or a contact sheet of a plan's grasps
 // (rank order by rows).

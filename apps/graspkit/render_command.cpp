@@ -24,29 +24,12 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-// The direction from the scene to the camera for --camera's named views.
-std::optional<Vector3> viewDirection(const std::string& name) {
-  if (name == "iso" || name == "auto") return Vector3(1.0, -1.3, 0.9);
-  if (name == "+x") return Vector3::UnitX();
-  if (name == "-x") return -Vector3::UnitX();
-  if (name == "+y") return Vector3::UnitY();
-  if (name == "-y") return -Vector3::UnitY();
-  if (name == "+z") return Vector3::UnitZ();
-  if (name == "-z") return -Vector3::UnitZ();
-  return std::nullopt;
-}
-
 }  // namespace
 
 ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect) {
-  if (camera == "world" || (camera == "auto" && frame.world.camera() && !frame.fromPlan)) {
-    if (!frame.world.camera())
-      throw Error("--camera world: the world file has no <camera>; use auto, iso or an axis");
-    return viewCameraFrom(*frame.world.camera());
-  }
-  const std::optional<Vector3> direction = viewDirection(camera);
-  if (!direction) throw Error(fmt::format("--camera: '{}' is not one of {}", camera, kCameraNames));
-  return frameBodies(frame.world, frame.focus, *direction, aspect);
+  // A plan's worlds keep the planned world's <camera>, which framed the open hand, not the grasp.
+  const std::string name = camera == "auto" && frame.fromPlan ? "iso" : camera;
+  return namedView(frame.world, name, frame.focus, aspect);
 }
 
 void addRenderCommand(CLI::App& app, RenderOptions& options) {
@@ -59,7 +42,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
   cmd->add_option("--size", options.size, "Picture size, WIDTHxHEIGHT (a contact sheet's tile)")
       ->capture_default_str();
   cmd->add_option("--camera", options.camera,
-                  std::string("The view: ") + kCameraNames +
+                  std::string("The view: ") + kViewNames +
                       " (auto: a world file's <camera> if it has one, else iso)")
       ->capture_default_str();
   cmd->add_flag("--contacts", options.contacts,

@@ -21,30 +21,14 @@ std::string readText(const std::filesystem::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// The hand and object of a world: its first hand (or first robot) and first graspable body.
-std::vector<BodyRef> focusOf(const World& world, std::optional<int>& hand,
-                             std::optional<BodyRef>& object) {
-  hand = world.firstHand();
-  if (!hand && world.robotCount() > 0) hand = 0;
-  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
-    if (world.bodies()[static_cast<std::size_t>(i)].isDynamic()) {
-      object = BodyRef::body(i);
-      break;
-    }
-  }
-  std::vector<BodyRef> focus;
-  for (const BodyRef& body : worldBodies(world)) {
-    const bool ofHand = body.kind == BodyRef::Kind::Link && hand && body.index == *hand;
-    if (ofHand || (object && body == *object)) focus.push_back(body);
-  }
-  return focus;
-}
-
 SceneFrame frameOf(std::string name, World world, bool contacts) {
   SceneFrame frame{std::move(name), std::move(world), {}, {}, {}, false};
-  std::optional<int> hand;
+  frame.focus = handAndObject(frame.world);
+  std::optional<int> hand = frame.world.firstHand();
+  if (!hand && frame.world.robotCount() > 0) hand = 0;
   std::optional<BodyRef> object;
-  frame.focus = focusOf(frame.world, hand, object);
+  for (const BodyRef& body : frame.focus)
+    if (body.kind == BodyRef::Kind::Body) object = body;
   if (contacts && hand && object) {
     const Grasp grasp = analyzeGrasp(frame.world, *hand, *object);
     frame.contacts = grasp.contacts;
@@ -139,7 +123,8 @@ std::string frameExtras(const SceneFrame& frame) {
                         {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
                         {"mu", c.mu}});
   }
-  return json{{"summary", frame.summary.is_null() ? json::object() : frame.summary},
+  return json{{"name", frame.name},
+              {"summary", frame.summary.is_null() ? json::object() : frame.summary},
               {"contacts", contacts}}
       .dump();
 }

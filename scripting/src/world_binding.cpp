@@ -10,6 +10,8 @@
 #include "graspkit/collision_filter.hpp"
 #include "graspkit/contact_search.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/grasp.hpp"
+#include "graspkit/render.hpp"
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
@@ -79,6 +81,36 @@ int save(lua_State* L) {
   saveWorldFile(world.world, file, SaveOptions{.root = file.parent_path()});
   world.file = file;
   return 0;
+}
+
+// world:render{out = "file.png", width = 640, height = 480, camera = "auto", contacts = false,
+// samples = 1}: a ray-cast PNG (graspkit render). With contacts, the first hand's contacts with
+// the first graspable body are marked. Returns the file's path.
+int render(lua_State* L) {
+  const ScriptWorld& world = *toWorldHandle(L, 1);
+  checkTable(L, 2);
+  const OptionsTable options(L, 2, {"out", "width", "height", "camera", "contacts", "samples"});
+  if (!options.has("out")) throw Error("world:render: 'out' (the PNG to write) is required");
+  const std::filesystem::path file = scriptContext(L).outputPath(options.string("out", ""));
+  RenderRequest request;
+  request.width = options.integer("width", 640);
+  request.height = options.integer("height", 480);
+  request.samples = options.integer("samples", 1);
+  if (request.width < 1 || request.height < 1)
+    throw Error(fmt::format("world:render: a {}x{} picture", request.width, request.height));
+  const std::vector<BodyRef> focus = handAndObject(world.world);
+  request.camera = namedView(world.world, options.string("camera", "auto"), focus,
+                             static_cast<double>(request.width) / request.height);
+  if (options.boolean("contacts", false)) {
+    std::optional<int> hand = world.world.firstHand();
+    for (const BodyRef& body : focus) {
+      if (hand && body.kind == BodyRef::Kind::Body)
+        request.contacts = analyzeGrasp(world.world, *hand, body).contacts;
+    }
+  }
+  writePng(graspkit::render(world.world, request), file);
+  lua_pushstring(L, file.c_str());
+  return 1;
 }
 
 int clone(lua_State* L) {
@@ -350,6 +382,7 @@ void openWorldFunctions(lua_State* L) {
       {"add_robot", guarded<addRobot>},
       {"save", guarded<save>},
       {"clone", guarded<clone>},
+      {"render", guarded<render>},
       {"file", guarded<file>},
       {"bodies", guarded<bodies>},
       {"body", guarded<body>},

@@ -46,6 +46,18 @@ BoundingSphere boundingSphere(const World& world, std::span<const BodyRef> bodie
 ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies, const Vector3& direction,
                        double aspect);
 
+// What a picture of a grasp frames: the links of the world's first hand (or first robot) and its
+// first graspable body; every body when it has neither.
+std::vector<BodyRef> handAndObject(const World& world);
+
+// The views render and view offer by name (kViewNames): "world" is the world file's <camera>,
+// "auto" that camera when the world has one and "iso" otherwise; "iso" and the axes ("+x" puts
+// the camera on the +x side) frame `focus` (every body when empty). Throws graspkit::Error for
+// an unknown name, or "world" in a world without a camera.
+inline constexpr const char* kViewNames = "auto, world, iso, +x, -x, +y, -y, +z, -z";
+ViewCamera namedView(const World& world, const std::string& name, std::span<const BodyRef> focus,
+                     double aspect);
+
 // Where world point `point` lands in a width x height picture: x right, y down, in pixels, the
 // centre of the top-left pixel at (0.5, 0.5). nullopt for a point behind the camera.
 std::optional<Eigen::Vector2d> projectPoint(const ViewCamera& camera, int width, int height,

@@ -72,6 +72,41 @@ ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies,
   return camera;
 }
 
+std::vector<BodyRef> handAndObject(const World& world) {
+  std::optional<int> hand = world.firstHand();
+  if (!hand && world.robotCount() > 0) hand = 0;
+  std::optional<BodyRef> object;
+  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
+    if (world.bodies()[static_cast<std::size_t>(i)].isDynamic()) {
+      object = BodyRef::body(i);
+      break;
+    }
+  }
+  std::vector<BodyRef> focus;
+  for (const BodyRef& body : worldBodies(world)) {
+    const bool ofHand = body.kind == BodyRef::Kind::Link && hand && body.index == *hand;
+    if (ofHand || (object && body == *object)) focus.push_back(body);
+  }
+  return focus;
+}
+
+ViewCamera namedView(const World& world, const std::string& name, std::span<const BodyRef> focus,
+                     double aspect) {
+  if (name == "world" || (name == "auto" && world.camera())) {
+    if (!world.camera())
+      throw Error("camera 'world': the world file has no <camera>; use auto, iso or an axis");
+    return viewCameraFrom(*world.camera());
+  }
+  static const std::vector<std::pair<std::string, Vector3>> kSides = {
+      {"auto", Vector3(1.0, -1.3, 0.9)}, {"iso", Vector3(1.0, -1.3, 0.9)},
+      {"+x", Vector3::UnitX()},          {"-x", -Vector3::UnitX()},
+      {"+y", Vector3::UnitY()},          {"-y", -Vector3::UnitY()},
+      {"+z", Vector3::UnitZ()},          {"-z", -Vector3::UnitZ()}};
+  for (const auto& [side, direction] : kSides)
+    if (side == name) return frameBodies(world, focus, direction, aspect);
+  throw Error(fmt::format("camera '{}': not one of {}", name, kViewNames));
+}
+
 std::optional<Eigen::Vector2d> projectPoint(const ViewCamera& camera, int width, int height,
                                             const Vector3& point) {
   const Vector3 local = camera.orientation.conjugate() * (point - camera.position);

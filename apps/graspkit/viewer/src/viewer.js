@@ -17,7 +17,8 @@ function base64ToBuffer(text) {
 }
 
 function formatNumber(value) {
-  return typeof value === 'number' ? value.toPrecision(5) : String(value);
+  if (typeof value !== 'number') return String(value);
+  return Number.isInteger(value) ? String(value) : value.toPrecision(5);
 }
 
 // A contact: a sphere on the object and its friction cone (apex at the point, along the normal).
@@ -91,7 +92,7 @@ function start() {
       state.markers.add(contactMarker(contact, meta.markerSize));
     state.markers.visible = panel.contacts.checked;
     world.add(state.markers);
-    panel.name.textContent = `${scene.name || 'scene'} (${state.index + 1} of ${state.scenes.length})`;
+    panel.name.textContent = `${extras.name || scene.name || 'scene'} (${state.index + 1} of ${state.scenes.length})`;
     const figures = [];
     for (const key of ['energy', 'epsilon', 'volume', 'contacts', 'force_closure'])
       if (key in (extras.summary || {})) figures.push(`${key} ${formatNumber(extras.summary[key])}`);
