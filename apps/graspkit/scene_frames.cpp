@@ -123,7 +123,9 @@ std::string frameExtras(const SceneFrame& frame) {
                         {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
                         {"mu", c.mu}});
   }
+  const Vector3 centre = boundingSphere(frame.world, frame.focus).centre / 1000.0;
   return json{{"name", frame.name},
+              {"centre", {centre.x(), centre.y(), centre.z()}},
               {"summary", frame.summary.is_null() ? json::object() : frame.summary},
               {"contacts", contacts}}
       .dump();

@@ -50,6 +50,8 @@ nlohmann::json cameraJson(const SceneFrame& frame) {
   const BoundingSphere sphere = boundingSphere(frame.world, frame.focus);
   const Vector3 forward = camera.orientation * -Vector3::UnitZ();
   const Vector3 up = camera.orientation * Vector3::UnitY();
+  // The orbit centre is the focus's centre: framing aims the camera at it (a world file's own
+  // camera may look elsewhere; then the point straight ahead at the same depth).
   const Vector3 target =
       camera.position + forward * std::max(1.0, (sphere.centre - camera.position).dot(forward));
   const auto metres = [](const Vector3& v) {
@@ -112,9 +114,16 @@ int runView(const ViewOptions& options, std::ostream& out) {
   for (std::size_t i = 0; i < frames.size(); ++i)
     scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
   const BoundingSphere sphere = boundingSphere(frames.front().world, frames.front().focus);
-  const nlohmann::json meta = {{"title", options.input.filename().string()},
-                               {"camera", cameraJson(frames.front())},
-                               {"markerSize", 0.12 * sphere.radius / 1000.0}};
+  nlohmann::json meta = {{"title", options.input.filename().string()},
+                         {"camera", cameraJson(frames.front())},
+                         {"markerSize", 0.12 * sphere.radius / 1000.0}};
+  // The object's centre (metres) in the first scene, for tools and tests that look at the page.
+  for (const BodyRef& body : frames.front().focus) {
+    if (body.kind != BodyRef::Kind::Body) continue;
+    const Vector3 c = boundingSphere(frames.front().world, std::vector<BodyRef>{body}).centre;
+    meta["object"] = {{"name", bodyName(frames.front().world, body)},
+                      {"centre", {c.x() / 1000.0, c.y() / 1000.0, c.z() / 1000.0}}};
+  }
   std::string page = fmt::format(kPageStart, fmt::arg("title", escapeHtml(
                                                  "graspkit: " + options.input.filename().string())));
   page += "<script id=\"graspkit-meta\" type=\"application/json\">" + escapeHtml(meta.dump()) +

@@ -26,8 +26,10 @@ function contactMarker(contact, size) {
   const group = new THREE.Group();
   const point = new THREE.Vector3(...contact.point);
   const normal = new THREE.Vector3(...contact.normal).normalize();
+  // Drawn over everything (no depth test): contacts lie under the fingertips.
   const sphere = new THREE.Mesh(new THREE.SphereGeometry(size * 0.18, 16, 12),
-    new THREE.MeshStandardMaterial({ color: 0xd91a1a }));
+    new THREE.MeshStandardMaterial({ color: 0xd91a1a, depthTest: false }));
+  sphere.renderOrder = 2;
   sphere.position.copy(point);
   group.add(sphere);
   const length = size;
@@ -35,7 +37,9 @@ function contactMarker(contact, size) {
   cone.translate(0, -length / 2, 0);  // apex at the origin, opening along -y
   const mesh = new THREE.Mesh(cone, new THREE.MeshStandardMaterial({
     color: 0xff5a33, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthWrite: false,
+    depthTest: false,
   }));
+  mesh.renderOrder = 1;
   mesh.position.copy(point);
   mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, -1, 0), normal);
   group.add(mesh);
@@ -66,7 +70,7 @@ function start() {
     figures: document.getElementById('figures'),
     contacts: document.getElementById('show-contacts'),
   };
-  const state = { scenes: [], index: 0, shown: null, markers: null };
+  const state = { scenes: [], index: 0, shown: null, markers: null, centre: null };
 
   function draw() {
     const width = canvas.clientWidth, height = canvas.clientHeight;
@@ -84,6 +88,15 @@ function start() {
     if (state.shown) world.remove(state.shown);
     if (state.markers) world.remove(state.markers);
     const scene = state.scenes[state.index];
+    // Each grasp is framed as the first: the view moves with the scene's centre.
+    const centre = scene.userData && scene.userData.centre;
+    if (centre && state.centre) {
+      const shift = new THREE.Vector3(...centre).sub(new THREE.Vector3(...state.centre));
+      controls.target.add(shift);
+      camera.position.add(shift);
+      controls.update();
+    }
+    state.centre = centre;
     state.shown = scene;
     world.add(scene);
     const extras = scene.userData || {};
