@@ -25,6 +25,9 @@
 namespace graspkit {
 
 class World;
+namespace raycast {
+struct SceneAccess;  // the engine's own pictures trace the Embree scene directly
+}
 
 struct Ray {
   Vector3 origin = Vector3::Zero();      // world, mm
@@ -101,6 +104,7 @@ class RayScene {
       double maxDistance = std::numeric_limits<double>::infinity()) const;
 
  private:
+  friend struct raycast::SceneAccess;
   template <class Sink>
   void intersectChecked(std::span<const Ray> rays, Sink&& sink) const;
 

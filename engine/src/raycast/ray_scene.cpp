@@ -9,6 +9,7 @@
 #include "graspkit/world.hpp"
 #include "raycast/closest_point.hpp"
 #include "raycast/embree_mesh.hpp"
+#include "raycast/scene_access.hpp"
 
 namespace graspkit {
 
@@ -387,5 +388,19 @@ std::optional<SurfacePoint> RayScene::nearestSurfacePoint(const BodyRef& body, c
   if (!nearest) return std::nullopt;
   return surfacePoint(instance, *nearest);
 }
+
+namespace raycast {
+
+RTCScene SceneAccess::scene(const RayScene& scene) {
+  return scene.impl_->scene;
+}
+
+std::vector<Transform> SceneAccess::instancePoses(const RayScene& scene) {
+  std::vector<Transform> poses;
+  for (const auto& instance : scene.impl_->instances) poses.push_back(instance.pose);
+  return poses;
+}
+
+}  // namespace raycast
 
 }  // namespace graspkit

@@ -14,6 +14,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/ray_scene.hpp"
 #include "graspkit/world.hpp"
+#include "raycast/scene_access.hpp"
 
 namespace graspkit {
 
@@ -133,11 +134,21 @@ Colour materialColour(Material material) {
 
 namespace {
 
-// A body's colours, looked up by the BodyRef a hit carries.
-struct BodyColours {
-  BodyRef body;
+// What a hit on one instance of the scene needs: its colours and its rotation (Embree reports
+// normals in the instance's own frame).
+struct InstanceLook {
+  bool isLink = false;
   const std::vector<Colour>* triangles = nullptr;  // null or empty: the material's colour
   Colour material;
+  Eigen::Matrix3f rotation;
+};
+
+// A hit as the tracer shades it.
+struct SurfaceHit {
+  double distance = kInfinity;  // mm; infinity for a miss
+  bool onLink = false;
+  Colour colour;
+  Vector3 normal = Vector3::UnitZ();  // world, unit
 };
 
 struct MarkerHit {
@@ -242,39 +253,42 @@ constexpr float kBehindLinkFade = 0.8f;
 
 struct Tracer {
   const RenderRequest& request;
-  std::vector<BodyColours> colours;  // sorted by body
+  std::vector<InstanceLook> instances;  // by Embree instance id
   std::vector<ContactMarker> markers;
   Vector3 keyLight;
 
-  Colour surfaceColour(const RayHit& hit) const {
-    const auto it = std::lower_bound(
-        colours.begin(), colours.end(), hit.body,
-        [](const BodyColours& c, const BodyRef& body) { return c.body < body; });
-    if (it == colours.end() || !(it->body == hit.body)) return Colour{};
-    if (it->triangles && static_cast<std::size_t>(hit.triangle) < it->triangles->size())
-      return (*it->triangles)[static_cast<std::size_t>(hit.triangle)];
-    return it->material;
+  SurfaceHit surfaceHit(unsigned instance, unsigned triangle, float t, float nx, float ny,
+                        float nz) const {
+    const InstanceLook& look = instances[instance];
+    SurfaceHit hit;
+    hit.distance = t;
+    hit.onLink = look.isLink;
+    hit.colour = look.triangles && triangle < look.triangles->size() ? (*look.triangles)[triangle]
+                                                                      : look.material;
+    const Eigen::Vector3f n = look.rotation * Eigen::Vector3f(nx, ny, nz);
+    const float length = n.norm();
+    hit.normal = length > 0.0f ? Vector3((n / length).cast<double>()) : Vector3::UnitZ();
+    return hit;
   }
 
   // Markers show through the hand's links (a contact lies under a fingertip), not through
   // other bodies: there they are drawn over the link, a little faded.
-  Eigen::Vector3f colourOf(const Ray& ray, const RayHit* hit) const {
-    const Vector3 d = ray.direction;  // unit: made so by the caller
+  Eigen::Vector3f colourOf(const Vector3& origin, const Vector3& d, const SurfaceHit& hit) const {
     Eigen::Vector3f colour(request.background.r, request.background.g, request.background.b);
-    const double surface = hit ? hit->distance : kInfinity;
-    if (hit) colour = shade(surfaceColour(*hit), hit->normal, d, keyLight);
+    const double surface = hit.distance;
+    if (surface < kInfinity) colour = shade(hit.colour, hit.normal, d, keyLight);
     if (markers.empty()) return colour;
-    const double occluder = hit && hit->body.isLink() ? kInfinity : surface;
+    const double occluder = hit.onLink ? kInfinity : surface;
     double sphereT = kInfinity, coneT = kInfinity;
     Vector3 sphereNormal = Vector3::UnitZ(), coneNormal = Vector3::UnitZ();
     for (const ContactMarker& m : markers) {
-      if (sphereEntry(ray.origin, d, m.boundCentre, m.boundRadius) >= occluder) continue;
-      const double ts = sphereEntry(ray.origin, d, m.point, m.radius);
+      if (sphereEntry(origin, d, m.boundCentre, m.boundRadius) >= occluder) continue;
+      const double ts = sphereEntry(origin, d, m.point, m.radius);
       if (ts < sphereT) {
         sphereT = ts;
-        sphereNormal = (ray.origin + ts * d - m.point).normalized();
+        sphereNormal = (origin + ts * d - m.point).normalized();
       }
-      const MarkerHit cone = coneEntry(ray.origin, d, m);
+      const MarkerHit cone = coneEntry(origin, d, m);
       if (cone.t < coneT) {
         coneT = cone.t;
         coneNormal = cone.normal;
@@ -311,70 +325,104 @@ void checkRequest(const RenderRequest& request) {
 
 }  // namespace
 
+namespace {
+
+// The rays of one band of sample rows, traced in Embree packets of 8 along each row.
+void traceBand(RTCScene scene, const Tracer& tracer, const Matrix3& axes, int top, int bottom,
+               int w, int h, std::vector<Eigen::Vector3f>& sum) {
+  const RenderRequest& request = tracer.request;
+  const int n = request.samples;
+  const double scale = std::tan(request.camera.heightAngle / 2.0);
+  const double aspect = static_cast<double>(request.width) / request.height;
+  const Eigen::Matrix3f axesF = axes.cast<float>();
+  const Eigen::Vector3f originF = request.camera.position.cast<float>();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(32) RTCRayHit8 packet;
+  alignas(32) int valid[8];
+  // Each column's offset along the camera's x axis, the same for every row.
+  std::vector<Eigen::Vector3f> across(static_cast<std::size_t>(w));
+  for (int x = 0; x < w; ++x)
+    across[static_cast<std::size_t>(x)] =
+        axesF.col(0) * static_cast<float>((2.0 * (x + 0.5) / w - 1.0) * scale * aspect);
+  const Eigen::Vector3f background(request.background.r, request.background.g,
+                                   request.background.b);
+  for (int y = top; y < bottom; ++y) {
+    const float cy = static_cast<float>((1.0 - 2.0 * (y + 0.5) / h) * scale);
+    const Eigen::Vector3f ahead = axesF.col(1) * cy - axesF.col(2);
+    for (int x0 = 0; x0 < w; x0 += 8) {
+      for (int k = 0; k < 8; ++k) {
+        const int x = std::min(x0 + k, w - 1);
+        valid[k] = x0 + k < w ? -1 : 0;
+        const Eigen::Vector3f d = (ahead + across[static_cast<std::size_t>(x)]).normalized();
+        packet.ray.org_x[k] = originF.x();
+        packet.ray.org_y[k] = originF.y();
+        packet.ray.org_z[k] = originF.z();
+        packet.ray.dir_x[k] = d.x();
+        packet.ray.dir_y[k] = d.y();
+        packet.ray.dir_z[k] = d.z();
+        packet.ray.tnear[k] = 0.0f;
+        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        packet.ray.time[k] = 0.0f;
+        packet.ray.mask[k] = ~0u;
+        packet.ray.id[k] = static_cast<unsigned>(k);
+        packet.ray.flags[k] = 0;
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect8(valid, scene, &context, &packet);
+      for (int k = 0; k < 8 && x0 + k < w; ++k) {
+        const std::size_t pixel =
+            static_cast<std::size_t>(y / n) * request.width + static_cast<std::size_t>((x0 + k) / n);
+        const bool missed = packet.hit.instID[0][k] == RTC_INVALID_GEOMETRY_ID;
+        if (missed && tracer.markers.empty()) {
+          sum[pixel] += background;
+          continue;
+        }
+        SurfaceHit hit;
+        if (!missed)
+          hit = tracer.surfaceHit(packet.hit.instID[0][k], packet.hit.primID[k],
+                                  packet.ray.tfar[k], packet.hit.Ng_x[k], packet.hit.Ng_y[k],
+                                  packet.hit.Ng_z[k]);
+        const Vector3 d(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
+        sum[pixel] += tracer.colourOf(request.camera.position, d, hit);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Image render(const World& world, const RenderRequest& request) {
   checkRequest(request);
   const RayScene scene(world);
   Tracer tracer{request, {}, {}, {}};
-  for (const BodyRef& body : scene.bodies()) {
+  const std::vector<Transform> poses = raycast::SceneAccess::instancePoses(scene);
+  for (std::size_t i = 0; i < scene.bodies().size(); ++i) {
+    const BodyRef& body = scene.bodies()[i];
     const BodyModel& model = bodyModel(world, body);
-    tracer.colours.push_back(
-        {body, model.mesh ? &model.mesh->triangleColours : nullptr, materialColour(model.material)});
+    tracer.instances.push_back({body.isLink(),
+                                model.mesh ? &model.mesh->triangleColours : nullptr,
+                                materialColour(model.material),
+                                poses[i].linear().cast<float>()});
   }
-  std::sort(tracer.colours.begin(), tracer.colours.end(),
-            [](const BodyColours& a, const BodyColours& b) { return a.body < b.body; });
   const Matrix3 axes = request.camera.orientation.normalized().toRotationMatrix();
   tracer.keyLight = (axes * Vector3(-0.4, 0.6, 1.0)).normalized();
   if (!request.contacts.empty())
     tracer.markers = contactMarkers(request, boundingSphere(world, scene.bodies()).radius);
 
   const int n = request.samples;
-  const double scale = std::tan(request.camera.heightAngle / 2.0);
-  const double aspect = static_cast<double>(request.width) / request.height;
   const int w = request.width * n;
   const int h = request.height * n;
   std::vector<Eigen::Vector3f> sum(static_cast<std::size_t>(request.width) * request.height,
                                    Eigen::Vector3f::Zero());
-  // Rows of samples are traced a band at a time: enough rays for Embree's packets, few enough
-  // to stay in cache.
-  constexpr int kBandRays = 8192;
-  const int bandRows = std::max(1, kBandRays / w);
-  std::vector<Ray> rays;
-  for (int top = 0; top < h; top += bandRows) {
-    const int bottom = std::min(h, top + bandRows);
-    rays.clear();
-    for (int y = top; y < bottom; ++y) {
-      const double cy = (1.0 - 2.0 * (y + 0.5) / h) * scale;
-      for (int x = 0; x < w; ++x) {
-        const double cx = (2.0 * (x + 0.5) / w - 1.0) * scale * aspect;
-        Ray ray;
-        ray.origin = request.camera.position;
-        ray.direction = (axes * Vector3(cx, cy, -1.0)).normalized();
-        rays.push_back(ray);
-      }
-    }
-    struct Band {
-      const Tracer* tracer;
-      const std::vector<Ray>* rays;
-      std::vector<Eigen::Vector3f>* sum;
-      int top, w, n, width;
-    } band{&tracer, &rays, &sum, top, w, n, request.width};
-    scene.intersect(
-        rays,
-        [](void* context, std::size_t i, const RayHit* hit) {
-          const auto& b = *static_cast<const Band*>(context);
-          const int x = static_cast<int>(i) % b.w;
-          const int y = b.top + static_cast<int>(i) / b.w;
-          (*b.sum)[static_cast<std::size_t>(y / b.n) * b.width + x / b.n] +=
-              b.tracer->colourOf((*b.rays)[i], hit);
-        },
-        &band);
-  }
+  traceBand(raycast::SceneAccess::scene(scene), tracer, axes, 0, h, w, h, sum);
   Image image(request.width, request.height);
-  const float weight = 1.0f / static_cast<float>(n * n);
+  const float weight = 255.0f / static_cast<float>(n * n);
   for (std::size_t i = 0; i < sum.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
-      const float v = std::clamp(sum[i][k] * weight, 0.0f, 1.0f);
-      image.rgb[i * 3 + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+      const float v = std::clamp(sum[i][k] * weight, 0.0f, 255.0f);
+      image.rgb[i * 3 + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(v + 0.5f);
     }
   }
   return image;
