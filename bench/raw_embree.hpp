@@ -14,7 +14,7 @@
 namespace graspkit::bench {
 
 inline RTCScene triangleScene(RTCDevice device, const std::vector<Vector3>& vertices,
-                       const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+                              const std::vector<std::array<std::uint32_t, 3>>& triangles) {
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);

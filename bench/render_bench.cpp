@@ -59,7 +59,8 @@ RTCScene flatScene(RTCDevice device, const World& world) {
     const Transform pose = bodyPose(world, body);
     const auto base = static_cast<std::uint32_t>(vertices.size());
     for (const Vector3& v : mesh->vertices) vertices.push_back(pose * v);
-    for (const auto& t : mesh->triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    for (const auto& t : mesh->triangles)
+      triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   }
   return triangleScene(device, vertices, triangles);
 }
@@ -92,7 +93,8 @@ void BM_Render(benchmark::State& state) {
   for (int i = 0; i < 5; ++i) {
     const auto start = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(rawIntersectN<8, RTCRayHit8>(scene, rays, &rtcIntersect8));
-    raw = std::min(raw, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    raw = std::min(raw,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);

@@ -22,9 +22,8 @@ void addExportCommand(CLI::App& app, ExportOptions& options) {
 }
 
 int runExport(const ExportOptions& options, std::ostream& out) {
-  const std::vector<SceneFrame> frames =
-      loadFrames({options.input, options.roots, options.genericRobots, true, options.grasp,
-                  options.top});
+  const std::vector<SceneFrame> frames = loadFrames(
+      {options.input, options.roots, options.genericRobots, true, options.grasp, options.top});
   std::vector<std::string> extras;
   for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
   std::vector<GltfScene> scenes;

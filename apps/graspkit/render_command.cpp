@@ -63,8 +63,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
 
 int runRender(const RenderOptions& options, std::ostream& out) {
   const auto [width, height] = parseSize(options.size);
-  FrameSource source{options.input, options.roots, options.genericRobots, options.contacts,
-                     options.grasp, options.top};
+  FrameSource source{options.input,    options.roots, options.genericRobots,
+                     options.contacts, options.grasp, options.top};
   const std::vector<SceneFrame> frames = loadFrames(source);
   std::vector<Image> tiles;
   for (const SceneFrame& frame : frames) {

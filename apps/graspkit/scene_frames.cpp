@@ -142,8 +142,8 @@ bool isPlanFile(const std::filesystem::path& file) {
 std::vector<SceneFrame> loadFrames(const FrameSource& source) {
   if (isPlanFile(source.input)) return planFrames(source);
   if (source.grasp > 0)
-    throw Error(fmt::format("--grasp picks a grasp of a plan; {} is a world",
-                            source.input.string()));
+    throw Error(
+        fmt::format("--grasp picks a grasp of a plan; {} is a world", source.input.string()));
   const LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
   std::vector<SceneFrame> frames;
   frames.push_back(

@@ -15,12 +15,12 @@
 namespace graspkit::cli {
 
 struct SceneFrame {
-  std::string name;                // the world's file stem, or "grasp N"
+  std::string name;  // the world's file stem, or "grasp N"
   World world;
-  std::vector<BodyRef> focus;      // what an automatic camera frames: the hand and the object
-  std::vector<Contact> contacts;   // the hand's contacts with the object (object side = body2)
-  nlohmann::json summary;          // epsilon, volume, contact count...; empty for a bare world
-  bool fromPlan = false;           // a plan's grasp: its world's <camera> framed the open hand
+  std::vector<BodyRef> focus;     // what an automatic camera frames: the hand and the object
+  std::vector<Contact> contacts;  // the hand's contacts with the object (object side = body2)
+  nlohmann::json summary;         // epsilon, volume, contact count...; empty for a bare world
+  bool fromPlan = false;          // a plan's grasp: its world's <camera> framed the open hand
 };
 
 struct FrameSource {

@@ -26,8 +26,7 @@ std::string base64(const std::string& bytes) {
     std::uint32_t word = 0;
     for (std::size_t k = 0; k < 3; ++k)
       word = word << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
-    for (std::size_t k = 0; k < 4; ++k)
-      text += k <= n ? kDigits[(word >> (18 - 6 * k)) & 63] : '=';
+    for (std::size_t k = 0; k < 4; ++k) text += k <= n ? kDigits[(word >> (18 - 6 * k)) & 63] : '=';
   }
   return text;
 }
@@ -36,10 +35,14 @@ std::string base64(const std::string& bytes) {
 std::string escapeHtml(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
@@ -104,19 +107,24 @@ void addViewCommand(CLI::App& app, ViewOptions& options) {
 
 int runView(const ViewOptions& options, std::ostream& out) {
   if (kViewerScript == nullptr)
-    throw Error("graspkit view: this graspkit was built without the web viewer (it needs node and "
-                "npm when it is built; see docs/pictures.md)");
-  const std::vector<SceneFrame> frames = loadFrames(
-      {options.input, options.roots, options.genericRobots, true, 0, options.top});
+    throw Error(
+        "graspkit view: this graspkit was built without the web viewer (it needs node and "
+        "npm when it is built; see docs/pictures.md)");
+  const std::vector<SceneFrame> frames =
+      loadFrames({options.input, options.roots, options.genericRobots, true, 0, options.top});
   std::vector<std::string> extras;
   for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
   std::vector<GltfScene> scenes;
   for (std::size_t i = 0; i < frames.size(); ++i)
     scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
-  const BoundingSphere sphere = boundingSphere(frames.front().world, frames.front().focus);
+  // Contact markers sized by the object, as render sizes them.
+  std::vector<BodyRef> object;
+  for (const BodyRef& body : frames.front().focus)
+    if (body.kind == BodyRef::Kind::Body) object.push_back(body);
+  const BoundingSphere sphere = boundingSphere(frames.front().world, object);
   nlohmann::json meta = {{"title", options.input.filename().string()},
                          {"camera", cameraJson(frames.front())},
-                         {"markerSize", 0.12 * sphere.radius / 1000.0}};
+                         {"markerSize", 0.25 * sphere.radius / 1000.0}};
   // The object's centre (metres) in the first scene, for tools and tests that look at the page.
   for (const BodyRef& body : frames.front().focus) {
     if (body.kind != BodyRef::Kind::Body) continue;
@@ -124,8 +132,8 @@ int runView(const ViewOptions& options, std::ostream& out) {
     meta["object"] = {{"name", bodyName(frames.front().world, body)},
                       {"centre", {c.x() / 1000.0, c.y() / 1000.0, c.z() / 1000.0}}};
   }
-  std::string page = fmt::format(kPageStart, fmt::arg("title", escapeHtml(
-                                                 "graspkit: " + options.input.filename().string())));
+  std::string page = fmt::format(
+      kPageStart, fmt::arg("title", escapeHtml("graspkit: " + options.input.filename().string())));
   page += "<script id=\"graspkit-meta\" type=\"application/json\">" + escapeHtml(meta.dump()) +
           "</script>\n";
   page += "<script id=\"graspkit-scene\" type=\"application/octet-stream\">" +

@@ -85,6 +85,28 @@ if(NOT magic STREQUAL "676c5446")
   message(FATAL_ERROR "plan.glb does not start with glTF: '${magic}'")
 endif()
 
+# Its JSON chunk (length at bytes 12-15, little-endian; text from byte 20): one scene per grasp,
+# and the contacts found again on each saved grasp world are as many as the plan measured (the
+# round trip of plan --out's worlds).
+file(READ ${work}/plan.glb length_hex OFFSET 12 LIMIT 4 HEX)
+string(REGEX REPLACE "^(..)(..)(..)(..)$" "\\4\\3\\2\\1" length_hex "${length_hex}")
+math(EXPR length "0x${length_hex}")
+file(READ ${work}/plan.glb gltf OFFSET 20 LIMIT ${length})
+string(JSON scenes LENGTH "${gltf}" scenes)
+if(NOT scenes EQUAL count)
+  message(FATAL_ERROR "plan.glb has ${scenes} scenes for ${count} grasps")
+endif()
+math(EXPR last "${count} - 1")
+foreach(i RANGE ${last})
+  string(JSON planned GET "${plan}" grasps ${i} contacts)
+  string(JSON found LENGTH "${gltf}" scenes ${i} extras contacts)
+  string(JSON name GET "${gltf}" scenes ${i} name)
+  math(EXPR rank "${i} + 1")
+  if(NOT found EQUAL planned OR NOT name STREQUAL "grasp ${rank}")
+    message(FATAL_ERROR "scene ${i} ('${name}'): ${found} contacts on the saved world, the plan measured ${planned}")
+  endif()
+endforeach()
+
 # The page: the scene and the viewer inside, nothing fetched from the network.
 execute_process(COMMAND ${GRASPKIT} -q view plan.json --html plan.html WORKING_DIRECTORY ${work}
                 OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)

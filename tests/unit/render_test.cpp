@@ -7,8 +7,8 @@
 #include <memory>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include "graspkit/body.hpp"
 #include "graspkit/error.hpp"
@@ -253,8 +253,8 @@ TEST(Gltf, RoundTripKeepsMeshesPosesAndExtras) {
   addBody(world, sphere, Vector3(100, 0, 0));
   const int moved = addBody(world, red, Vector3(0, 50, 0));
   World second = world.clone();
-  const Transform turned = makeTransform(Vector3(-20, 5, 7.5), Quaternion(Eigen::AngleAxisd(
-                                                                   0.7, Vector3(1, 2, 3).normalized())));
+  const Transform turned = makeTransform(
+      Vector3(-20, 5, 7.5), Quaternion(Eigen::AngleAxisd(0.7, Vector3(1, 2, 3).normalized())));
   second.bodies()[static_cast<std::size_t>(moved)].setPose(turned);
   const auto file = test::scratchDir() / "scene.glb";
   const std::vector<GltfScene> scenes = {{"first", &world, R"({"epsilon": 0.25})"},
@@ -286,9 +286,8 @@ TEST(Gltf, RoundTripKeepsMeshesPosesAndExtras) {
   EXPECT_NEAR(positions.maxValues[2] * 1000.0, 30.0, 1e-4);
   EXPECT_EQ(model.accessors[static_cast<std::size_t>(boxMesh.primitives[0].indices)].count,
             3 * red->triangles.size());
-  const auto& colour =
-      model.materials[static_cast<std::size_t>(boxMesh.primitives[0].material)]
-          .pbrMetallicRoughness.baseColorFactor;
+  const auto& colour = model.materials[static_cast<std::size_t>(boxMesh.primitives[0].material)]
+                           .pbrMetallicRoughness.baseColorFactor;
   EXPECT_DOUBLE_EQ(colour[0], 1.0);
   EXPECT_DOUBLE_EQ(colour[1], 0.0);
   EXPECT_THROW(gltfBinary(std::vector<GltfScene>{{"bad", &world, "[1, 2]"}}), Error);
@@ -311,8 +310,9 @@ TEST(Gltf, PlannerMugExportsEveryBody) {
     const tinygltf::Node& node = model.nodes.at(expected++);
     EXPECT_EQ(node.name, bodyName(world, body));
     const auto& primitive = model.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
-    EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(primitive.attributes.at("POSITION"))).count,
-              mesh->vertices.size());
+    EXPECT_EQ(
+        model.accessors.at(static_cast<std::size_t>(primitive.attributes.at("POSITION"))).count,
+        mesh->vertices.size());
     std::size_t indices = 0;
     for (const auto& p : model.meshes.at(static_cast<std::size_t>(node.mesh)).primitives)
       indices += model.accessors.at(static_cast<std::size_t>(p.indices)).count;

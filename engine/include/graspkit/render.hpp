@@ -43,8 +43,8 @@ BoundingSphere boundingSphere(const World& world, std::span<const BodyRef> bodie
 // A camera on the side `direction` points to (world), looking back at the bounding sphere of
 // `bodies` (every body of the world when empty) so that the sphere fills the view of an
 // image `aspect` (width / height) wide. Up is the world's +z, or +y when looking along z.
-ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies, const Vector3& direction,
-                       double aspect);
+ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies,
+                       const Vector3& direction, double aspect);
 
 // What a picture of a grasp frames: the links of the world's first hand (or first robot) and its
 // first graspable body; every body when it has neither.
@@ -71,7 +71,8 @@ struct RenderRequest {
   // Contacts to mark: a sphere at each contact's point on body2 (the object, for a grasp's
   // contacts) and its friction cone, apex at the point, opening along the normal with half
   // angle atan(mu). Markers show through robot links (they lie under the fingertips) but not
-  // through other bodies. Sizes are in mm; 0 picks 3 % and 15 % of the scene's radius.
+  // through other bodies. Sizes are in mm; 0 picks 5 % and 25 % of the radius of the first
+  // contact's body2 (the object).
   std::vector<Contact> contacts;
   double markerRadius = 0.0;
   double coneLength = 0.0;

@@ -24,10 +24,10 @@
 
 #include <fmt/format.h>
 
+#include <Inventor/SbColor.h>
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>
 #include <Inventor/SoPath.h>
-#include <Inventor/SbColor.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
 #include <Inventor/actions/SoSearchAction.h>
@@ -164,7 +164,7 @@ constexpr std::size_t kMaxTriangles = 10'000'000;
 struct TriangleCollector {
   VertexWelder welder;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<Colour> colours;  // one per triangle: the diffuse colour in effect
+  std::vector<Colour> colours;          // one per triangle: the diffuse colour in effect
   const SoNode* colourShape = nullptr;  // the shape `colour` was read for
   Colour colour;
   bool non_finite = false;

@@ -5,8 +5,8 @@
 #include <map>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include "graspkit/body_ref.hpp"
 #include "graspkit/error.hpp"
@@ -93,7 +93,8 @@ class GltfBuilder {
 
  private:
   int meshFor(const TriangleMesh& mesh, Colour fallback) {
-    const auto key = std::make_pair(&mesh, std::array<float, 3>{fallback.r, fallback.g, fallback.b});
+    const auto key =
+        std::make_pair(&mesh, std::array<float, 3>{fallback.r, fallback.g, fallback.b});
     if (const auto it = meshes_.find(key); it != meshes_.end()) return it->second;
     const int positions = addPositions(mesh);
     // Triangles grouped by colour, in order of first appearance.
@@ -162,7 +163,8 @@ class GltfBuilder {
       }
     }
     tinygltf::Accessor accessor;
-    accessor.bufferView = addView(xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    accessor.bufferView =
+        addView(xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
     accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     accessor.type = TINYGLTF_TYPE_VEC3;
     accessor.count = mesh.vertices.size();

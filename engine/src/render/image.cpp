@@ -70,7 +70,8 @@ void readEncoded(png_structp png, png_bytep data, png_size_t length) {
 }
 
 std::string encodePng(const Image& image, PngState& state) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, onPngError, onPngWarning);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, onPngError, onPngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!info) {
     png_destroy_write_struct(&png, nullptr);

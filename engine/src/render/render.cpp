@@ -121,13 +121,20 @@ std::optional<Eigen::Vector2d> projectPoint(const ViewCamera& camera, int width,
 
 Colour materialColour(Material material) {
   switch (material) {
-    case Material::Frictionless: return {0.85f, 0.85f, 0.9f};
-    case Material::Glass: return {0.6f, 0.8f, 0.9f};
-    case Material::Metal: return {0.62f, 0.64f, 0.68f};
-    case Material::Plastic: return {0.9f, 0.7f, 0.35f};
-    case Material::Wood: return {0.7f, 0.5f, 0.3f};
-    case Material::Rubber: return {0.25f, 0.25f, 0.28f};
-    case Material::Stone: return {0.55f, 0.55f, 0.5f};
+    case Material::Frictionless:
+      return {0.85f, 0.85f, 0.9f};
+    case Material::Glass:
+      return {0.6f, 0.8f, 0.9f};
+    case Material::Metal:
+      return {0.62f, 0.64f, 0.68f};
+    case Material::Plastic:
+      return {0.9f, 0.7f, 0.35f};
+    case Material::Wood:
+      return {0.7f, 0.5f, 0.3f};
+    case Material::Rubber:
+      return {0.25f, 0.25f, 0.28f};
+    case Material::Stone:
+      return {0.55f, 0.55f, 0.5f};
   }
   return {};
 }
@@ -166,10 +173,10 @@ struct ContactMarker {
   double boundRadius;
 };
 
-std::vector<ContactMarker> contactMarkers(const RenderRequest& request, double sceneRadius) {
+std::vector<ContactMarker> contactMarkers(const RenderRequest& request, double objectRadius) {
   std::vector<ContactMarker> markers;
-  const double radius = request.markerRadius > 0 ? request.markerRadius : 0.03 * sceneRadius;
-  const double length = request.coneLength > 0 ? request.coneLength : 0.15 * sceneRadius;
+  const double radius = request.markerRadius > 0 ? request.markerRadius : 0.05 * objectRadius;
+  const double length = request.coneLength > 0 ? request.coneLength : 0.25 * objectRadius;
   for (const Contact& c : request.contacts) {
     if (!c.position2.allFinite() || !c.normal.allFinite() || c.normal.norm() == 0.0) continue;
     ContactMarker m;
@@ -264,7 +271,7 @@ struct Tracer {
     hit.distance = t;
     hit.onLink = look.isLink;
     hit.colour = look.triangles && triangle < look.triangles->size() ? (*look.triangles)[triangle]
-                                                                      : look.material;
+                                                                     : look.material;
     const Eigen::Vector3f n = look.rotation * Eigen::Vector3f(nx, ny, nz);
     const float length = n.norm();
     hit.normal = length > 0.0f ? Vector3((n / length).cast<double>()) : Vector3::UnitZ();
@@ -319,8 +326,9 @@ void checkRequest(const RenderRequest& request) {
   const ViewCamera& c = request.camera;
   if (!c.position.allFinite() || !c.orientation.coeffs().allFinite() ||
       c.orientation.norm() < 1e-9 || !(c.heightAngle > 0.0 && c.heightAngle < 3.1))
-    throw Error("render: the camera needs a finite position, a rotation and a height angle "
-                "between 0 and 3.1 radians");
+    throw Error(
+        "render: the camera needs a finite position, a rotation and a height angle "
+        "between 0 and 3.1 radians");
 }
 
 }  // namespace
@@ -372,8 +380,8 @@ void traceBand(RTCScene scene, const Tracer& tracer, const Matrix3& axes, int to
       }
       rtcIntersect8(valid, scene, &context, &packet);
       for (int k = 0; k < 8 && x0 + k < w; ++k) {
-        const std::size_t pixel =
-            static_cast<std::size_t>(y / n) * request.width + static_cast<std::size_t>((x0 + k) / n);
+        const std::size_t pixel = static_cast<std::size_t>(y / n) * request.width +
+                                  static_cast<std::size_t>((x0 + k) / n);
         const bool missed = packet.hit.instID[0][k] == RTC_INVALID_GEOMETRY_ID;
         if (missed && tracer.markers.empty()) {
           sum[pixel] += background;
@@ -381,9 +389,8 @@ void traceBand(RTCScene scene, const Tracer& tracer, const Matrix3& axes, int to
         }
         SurfaceHit hit;
         if (!missed)
-          hit = tracer.surfaceHit(packet.hit.instID[0][k], packet.hit.primID[k],
-                                  packet.ray.tfar[k], packet.hit.Ng_x[k], packet.hit.Ng_y[k],
-                                  packet.hit.Ng_z[k]);
+          hit = tracer.surfaceHit(packet.hit.instID[0][k], packet.hit.primID[k], packet.ray.tfar[k],
+                                  packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
         const Vector3 d(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
         sum[pixel] += tracer.colourOf(request.camera.position, d, hit);
       }
@@ -401,15 +408,20 @@ Image render(const World& world, const RenderRequest& request) {
   for (std::size_t i = 0; i < scene.bodies().size(); ++i) {
     const BodyRef& body = scene.bodies()[i];
     const BodyModel& model = bodyModel(world, body);
-    tracer.instances.push_back({body.isLink(),
-                                model.mesh ? &model.mesh->triangleColours : nullptr,
-                                materialColour(model.material),
-                                poses[i].linear().cast<float>()});
+    tracer.instances.push_back({body.isLink(), model.mesh ? &model.mesh->triangleColours : nullptr,
+                                materialColour(model.material), poses[i].linear().cast<float>()});
   }
   const Matrix3 axes = request.camera.orientation.normalized().toRotationMatrix();
   tracer.keyLight = (axes * Vector3(-0.4, 0.6, 1.0)).normalized();
-  if (!request.contacts.empty())
-    tracer.markers = contactMarkers(request, boundingSphere(world, scene.bodies()).radius);
+  if (!request.contacts.empty()) {
+    // Sized by what the contacts lie on (body2: the object of a grasp), not by the scene,
+    // which may hold a floor or a table many times the object's size.
+    const BodyRef object = request.contacts.front().body2;
+    const double radius = isValid(world, object)
+                              ? boundingSphere(world, std::vector<BodyRef>{object}).radius
+                              : boundingSphere(world, scene.bodies()).radius;
+    tracer.markers = contactMarkers(request, radius);
+  }
 
   const int n = request.samples;
   const int w = request.width * n;

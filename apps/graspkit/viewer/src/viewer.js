@@ -27,7 +27,7 @@ function contactMarker(contact, size) {
   const point = new THREE.Vector3(...contact.point);
   const normal = new THREE.Vector3(...contact.normal).normalize();
   // Drawn over everything (no depth test): contacts lie under the fingertips.
-  const sphere = new THREE.Mesh(new THREE.SphereGeometry(size * 0.18, 16, 12),
+  const sphere = new THREE.Mesh(new THREE.SphereGeometry(size * 0.2, 16, 12),
     new THREE.MeshStandardMaterial({ color: 0xd91a1a, depthTest: false }));
   sphere.renderOrder = 2;
   sphere.position.copy(point);
