@@ -15,9 +15,9 @@ void addExportCommand(CLI::App& app, ExportOptions& options) {
       ->check(existingFile());
   cmd->add_option("--gltf", options.gltf, "The .glb file to write")->required();
   cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--top", options.top, "Plans: the first N grasps (all when not given)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   addLoadFlags(*cmd, options.roots, options.genericRobots);
 }
 

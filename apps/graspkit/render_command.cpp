@@ -19,8 +19,9 @@ std::pair<int, int> parseSize(const std::string& text) {
   if (!std::regex_match(text, m, kSize))
     throw Error(fmt::format("--size: '{}' is not WIDTHxHEIGHT, e.g. 640x480", text));
   const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw Error(fmt::format("--size: {}x{}; each side must be 1 to 16384 pixels", w, h));
+  if (w < 1 || h < 1 || w > 16384 || h > 16384 || w * h > 4096 * 4096)
+    throw Error(fmt::format(
+        "--size: {}x{}; each side must be 1 to 16384 pixels, the picture at most 4096x4096", w, h));
   return {w, h};
 }
 
@@ -48,12 +49,12 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
   cmd->add_flag("--contacts", options.contacts,
                 "Mark the hand's contacts with the object and their friction cones");
   cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--top", options.top, "Plans: the first N grasps on the sheet")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--columns", options.columns, "Plans: tiles a row on the sheet (0: square)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_option("--samples", options.samples, "Rays per pixel side (2: 4 rays, smoother edges)")
       ->check(CLI::Range(1, 4))
@@ -66,6 +67,12 @@ int runRender(const RenderOptions& options, std::ostream& out) {
   FrameSource source{options.input,    options.roots, options.genericRobots,
                      options.contacts, options.grasp, options.top};
   const std::vector<SceneFrame> frames = loadFrames(source);
+  // A sheet of 20 full-size tiles would not fit in memory; refuse before drawing any.
+  if (static_cast<double>(width) * height * static_cast<double>(frames.size()) > 64e6)
+    throw Error(
+        fmt::format("--size {}x{} for {} grasps makes a sheet over 64 million pixels; "
+                    "use a smaller --size or --top",
+                    width, height, frames.size()));
   std::vector<Image> tiles;
   for (const SceneFrame& frame : frames) {
     RenderRequest request;

@@ -71,6 +71,9 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   const json plan = json::parse(readText(file), nullptr, false);
   if (plan.is_discarded())
     throw Error(SourceLocation{file.string(), 0, {}}, "not valid JSON (a plan from plan --json)");
+  if (!plan.is_object())
+    throw Error(SourceLocation{file.string(), 0, {}},
+                "not a plan: a plan is a JSON object with \"grasps\" (from plan --out)");
   const json& grasps = member(plan, "grasps", file);
   if (!grasps.is_array()) throw Error(SourceLocation{file.string(), 0, "grasps"}, "not a list");
   const int count = static_cast<int>(grasps.size());
@@ -82,7 +85,10 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   if (source.grasp == 0 && source.top > 0) last = std::min(count, source.top);
   // The worlds plan --out wrote name their models as the planned world did (relative to its
   // root), so that world's folder and its parents are searched after --root.
-  std::filesystem::path planned = member(plan, "world", file).get<std::string>();
+  const json& worldName = member(plan, "world", file);
+  if (!worldName.is_string())
+    throw Error(SourceLocation{file.string(), 0, "world"}, "not a file name");
+  std::filesystem::path planned = worldName.get<std::string>();
   if (!std::filesystem::exists(planned)) planned = file.parent_path() / planned;
   LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
   for (auto folder = std::filesystem::absolute(planned).parent_path();;
@@ -97,15 +103,23 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   std::vector<SceneFrame> frames;
   for (int i = first; i < last; ++i) {
     const json& grasp = grasps[static_cast<std::size_t>(i)];
-    World world = hasWorlds ? World{} : graspWorldFromPlan(*base, plan, grasp);
-    if (hasWorlds) {
-      // plan --out writes the worlds beside the JSON; the names it lists are as it was run.
-      const std::filesystem::path listed = plan["world_files"][static_cast<std::size_t>(i)];
-      world = loadWorldFile(file.parent_path() / listed.filename(), load);
+    World world;
+    try {
+      if (hasWorlds) {
+        // plan --out writes the worlds beside the JSON; the names it lists are as it was run.
+        const std::filesystem::path listed =
+            plan["world_files"][static_cast<std::size_t>(i)].get<std::string>();
+        world = loadWorldFile(file.parent_path() / listed.filename(), load);
+      } else {
+        world = graspWorldFromPlan(*base, plan, grasp);
+      }
+    } catch (const json::exception& e) {
+      throw Error(SourceLocation{file.string(), 0, fmt::format("grasps[{}]", i)},
+                  fmt::format("not a grasp plan --out writes: {}", e.what()));
     }
     SceneFrame frame = frameOf(fmt::format("grasp {}", i + 1), std::move(world), source.contacts);
     for (const char* key : {"energy", "epsilon", "volume", "contacts", "force_closure"})
-      if (grasp.contains(key)) frame.summary[key] = grasp[key];
+      if (grasp.is_object() && grasp.contains(key)) frame.summary[key] = grasp[key];
     frame.summary["rank"] = i + 1;
     frame.fromPlan = true;
     frames.push_back(std::move(frame));
@@ -132,11 +146,12 @@ std::string frameExtras(const SceneFrame& frame) {
 }
 
 bool isPlanFile(const std::filesystem::path& file) {
+  if (file.extension() == ".json") return true;
   std::ifstream in(file);
   char c = 0;
   while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
   }
-  return c == '{';
+  return c == '{' || c == '[';
 }
 
 std::vector<SceneFrame> loadFrames(const FrameSource& source) {

@@ -44,7 +44,8 @@ std::string frameExtras(const SceneFrame& frame);
 // The camera a picture of `frame` starts from: --camera's choice (see kCameraNames).
 ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect);
 
-// True when `file` holds a plan (JSON), false for a world (XML), by its first character.
+// True when `file` holds a plan (JSON), false for a world (XML): by its .json extension, else
+// by its first character.
 bool isPlanFile(const std::filesystem::path& file);
 
 }  // namespace graspkit::cli

@@ -101,7 +101,7 @@ void addViewCommand(CLI::App& app, ViewOptions& options) {
       ->check(existingFile());
   cmd->add_option("--html", options.html, "The page to write")->required();
   cmd->add_option("--top", options.top, "Plans: the first N grasps (all when not given)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   addLoadFlags(*cmd, options.roots, options.genericRobots);
 }
 

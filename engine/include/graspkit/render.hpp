@@ -80,8 +80,8 @@ struct RenderRequest {
   int samples = 1;
 };
 
-// Renders `world` as the request says. Throws graspkit::Error for a size outside 1..16384, a
-// non-finite camera, or samples outside 1..4.
+// Renders `world` as the request says. Throws graspkit::Error for a side outside 1..16384 or
+// more than 4096 x 4096 pixels, a non-finite camera, or samples outside 1..4.
 Image render(const World& world, const RenderRequest& request);
 
 // Surface colours a body gets when its file gives none, by material (glass, metal, ...).

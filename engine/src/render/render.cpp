@@ -56,6 +56,11 @@ BoundingSphere boundingSphere(const World& world, std::span<const BodyRef> bodie
 ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies,
                        const Vector3& direction, double aspect) {
   const auto [centre, radius] = boundingSphere(world, bodies);
+  if (!centre.allFinite() || !(radius < 1e9))
+    throw Error(
+        fmt::format("cannot frame the bodies: they span {} mm about ({}, {}, {}); is a "
+                    "pose far out or not finite?",
+                    radius, centre.x(), centre.y(), centre.z()));
   if (!direction.allFinite() || direction.norm() == 0.0)
     throw Error("frameBodies: the view direction must be finite and non-zero");
   const Vector3 back = direction.normalized();  // camera +z: from the scene towards the camera
@@ -317,10 +322,17 @@ struct Tracer {
   }
 };
 
+// A picture's memory grows with its pixels (16 bytes each while it is traced): 16.7 million
+// (4096 x 4096) keeps that near 270 MB.
+constexpr std::int64_t kMaxPixels = 4096 * 4096;
+
 void checkRequest(const RenderRequest& request) {
-  if (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384)
-    throw Error(fmt::format("render: a {}x{} picture; width and height must be 1 to 16384",
-                            request.width, request.height));
+  if (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384 ||
+      static_cast<std::int64_t>(request.width) * request.height > kMaxPixels)
+    throw Error(
+        fmt::format("render: a {}x{} picture; width and height must be 1 to 16384, and "
+                    "the picture at most {} pixels",
+                    request.width, request.height, kMaxPixels));
   if (request.samples < 1 || request.samples > 4)
     throw Error(fmt::format("render: {} samples a side; 1 to 4", request.samples));
   const ViewCamera& c = request.camera;
