@@ -4,10 +4,12 @@
 #include <fmt/format.h>
 
 #include "graspkit/collision.hpp"
+#include "graspkit/grasp.hpp"
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/material.hpp"
+#include "graspkit/render.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -181,6 +183,35 @@ void bindBody(py::module_& m) {
       });
 }
 
+// World.render: the picture is drawn on a clone, with the GIL released.
+py::array_t<std::uint8_t> renderWorld(const WorldPtr& w, int width, int height,
+                                      const std::string& camera, bool contacts, int samples,
+                                      const py::object& out) {
+  RenderRequest request;
+  request.width = width;
+  request.height = height;
+  request.samples = samples;
+  const World world = w->world.clone();
+  Image image;
+  {
+    py::gil_scoped_release release;
+    const std::vector<BodyRef> focus = handAndObject(world);
+    request.camera = namedView(world, camera, focus, static_cast<double>(width) / height);
+    if (contacts) {
+      const std::optional<int> hand = world.firstHand();
+      for (const BodyRef& body : focus)
+        if (hand && body.kind == BodyRef::Kind::Body)
+          request.contacts = analyzeGrasp(world, *hand, body).contacts;
+    }
+    image = render(world, request);
+  }
+  if (!out.is_none()) writePng(image, py::cast<std::filesystem::path>(out));
+  py::array_t<std::uint8_t> pixels({static_cast<py::ssize_t>(image.height),
+                                    static_cast<py::ssize_t>(image.width), py::ssize_t{3}});
+  std::copy(image.rgb.begin(), image.rgb.end(), pixels.mutable_data());
+  return pixels;
+}
+
 void bindWorldClass(py::module_& m) {
   py::class_<WorldHandle, WorldPtr>(m, "World", "Bodies and robots in one frame (mm).")
       .def(py::init([] { return std::make_shared<WorldHandle>(); }), "An empty world.")
@@ -255,6 +286,12 @@ void bindWorldClass(py::module_& m) {
           },
           py::arg("which") = py::none(),
           "A robot by 0-based index or name; without an argument the world's first hand.")
+      .def("render", &renderWorld, py::kw_only(), py::arg("width") = 640, py::arg("height") = 480,
+           py::arg("camera") = "auto", py::arg("contacts") = false, py::arg("samples") = 1,
+           py::arg("out") = py::none(),
+           "A ray-cast picture, as `graspkit render` draws it: a (height, width, 3) uint8 array; "
+           "`out` also writes it as a PNG. camera: auto, world, iso, +x, -x, +y, -y, +z, -z; "
+           "contacts marks the first hand's contacts with the first graspable body.")
       .def(
           "collides", [](const WorldPtr& w) { return anyCollision(w->world, {}); },
           "Whether any two bodies that may collide intersect.")
