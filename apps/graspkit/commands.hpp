@@ -142,6 +142,7 @@ struct RenderOptions {
   int top = 20;
   int columns = 0;
   int samples = 1;
+  bool noLabels = false;  // plans: no "#rank eps vol" in the tiles' corners
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);

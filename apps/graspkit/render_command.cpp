@@ -25,6 +25,30 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
+// "#rank eps E vol V" from a grasp's summary, for its tile.
+std::string labelOf(const SceneFrame& frame) {
+  const nlohmann::json& s = frame.summary;
+  std::string label = fmt::format("#{}", s.value("rank", 0));
+  if (s.contains("epsilon") && s["epsilon"].is_number())
+    label += fmt::format(" eps {:.3g}", s["epsilon"].get<double>());
+  if (s.contains("volume") && s["volume"].is_number())
+    label += fmt::format(" vol {:.3g}", s["volume"].get<double>());
+  return label;
+}
+
+// The label in the top-left corner, dark on a lightened band so it reads on any scene.
+void drawLabel(Image& image, const std::string& label) {
+  const int scale = image.width >= 480 ? 2 : 1;
+  const auto [w, h] = textSize(label, scale);
+  for (int y = 0; y < std::min(h + 4, image.height); ++y)
+    for (int x = 0; x < std::min(w + 4, image.width); ++x) {
+      auto p = image.pixel(x, y);
+      for (auto& c : p) c = static_cast<std::uint8_t>(c + (255 - c) * 7 / 10);
+      image.setPixel(x, y, p);
+    }
+  drawText(image, 2, 2, label, {40, 40, 40}, scale);
+}
+
 }  // namespace
 
 ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect) {
@@ -56,6 +80,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
   cmd->add_option("--columns", options.columns, "Plans: tiles a row on the sheet (0: square)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  cmd->add_flag("--no-labels", options.noLabels,
+                "Plans: no rank, epsilon and volume in each tile's corner");
   cmd->add_option("--samples", options.samples, "Rays per pixel side (2: 4 rays, smoother edges)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
@@ -82,6 +108,7 @@ int runRender(const RenderOptions& options, std::ostream& out) {
     request.camera = chooseCamera(frame, options.camera, static_cast<double>(width) / height);
     request.contacts = frame.contacts;
     tiles.push_back(render(frame.world, request));
+    if (frame.fromPlan && !options.noLabels) drawLabel(tiles.back(), labelOf(frame));
   }
   const int columns =
       options.columns > 0

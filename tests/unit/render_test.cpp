@@ -327,3 +327,46 @@ TEST(Gltf, PlannerMugExportsEveryBody) {
 
 }  // namespace
 }  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+int inkCount(const Image& image) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) n += image.pixel(x, y)[0] == 0 ? 1 : 0;
+  return n;
+}
+
+TEST(Text, StaysInItsBoxAndScalesByArea) {
+  const std::string text = "#1 eps 0.394";
+  const auto [w, h] = textSize(text, 1);
+  EXPECT_EQ(w, 12 * 6 - 1);
+  EXPECT_EQ(h, 7);
+  Image one(100, 20);
+  drawText(one, 3, 4, text);
+  for (int y = 0; y < one.height; ++y)
+    for (int x = 0; x < one.width; ++x)
+      if (one.pixel(x, y)[0] == 0) {
+        EXPECT_GE(x, 3);
+        EXPECT_LT(x, 3 + w);
+        EXPECT_GE(y, 4);
+        EXPECT_LT(y, 4 + h);
+      }
+  Image three(300, 40);
+  drawText(three, 0, 0, text, {0, 0, 0}, 3);
+  EXPECT_GT(inkCount(one), 50);
+  EXPECT_EQ(inkCount(three), 9 * inkCount(one));
+  // Lower case draws as upper case; different characters differ; clipping is harmless.
+  Image a(20, 10), b(20, 10), c(20, 10);
+  drawText(a, 0, 0, "e");
+  drawText(b, 0, 0, "E");
+  drawText(c, 0, 0, "8");
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_NE(a.rgb, c.rgb);
+  drawText(a, -3, -4, "clipped \x01", {0, 0, 0}, 2);
+  drawText(a, 1000, 1000, "far away");
+}
+
+}  // namespace
+}  // namespace graspkit
