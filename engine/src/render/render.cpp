@@ -1,6 +1,8 @@
-// Ray casting a world: one ray per pixel (or per sample) through a RayScene, traced in batches
-// that Embree takes as packets; each hit is shaded as it comes back. Contact markers are shapes
-// of their own (a sphere and a cone per contact), intersected in closed form after the scene.
+// Ray casting a world: one ray per pixel (or per sample), built in float straight into Embree
+// packets of 8 and traced through a RayScene's scene (raycast::SceneAccess: a picture needs
+// only a hit's body, triangle and facing, not RayScene's checked double-precision hits); each
+// hit is shaded as it comes back. Contact markers are shapes of their own (a sphere and a cone
+// per contact), intersected in closed form after the scene.
 #include "graspkit/render.hpp"
 
 #include <algorithm>
@@ -347,7 +349,7 @@ void checkRequest(const RenderRequest& request) {
 
 namespace {
 
-// The rays of one band of sample rows, traced in Embree packets of 8 along each row.
+// Rows top..bottom of samples, traced in Embree packets of 8 along each row.
 void traceBand(RTCScene scene, const Tracer& tracer, const Matrix3& axes, int top, int bottom,
                int w, int h, std::vector<Eigen::Vector3f>& sum) {
   const RenderRequest& request = tracer.request;
