@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "graspkit/io/gltf_file.hpp"
+#include "graspkit/io/output_file.hpp"
 #include "scene_frames.hpp"
 
 namespace graspkit::cli {
@@ -24,14 +24,9 @@ void addExportCommand(CLI::App& app, ExportOptions& options) {
 int runExport(const ExportOptions& options, std::ostream& out) {
   const std::vector<SceneFrame> frames = loadFrames(
       {options.input, options.roots, options.genericRobots, true, options.grasp, options.top});
-  std::vector<std::string> extras;
-  for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
-  std::vector<GltfScene> scenes;
-  for (std::size_t i = 0; i < frames.size(); ++i)
-    scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
-  saveGltf(scenes, options.gltf);
-  out << fmt::format("wrote {} ({} scene{})\n", options.gltf.string(), scenes.size(),
-                     scenes.size() == 1 ? "" : "s");
+  writeFileAtomically(options.gltf, framesGltf(frames));
+  out << fmt::format("wrote {} ({} scene{})\n", options.gltf.string(), frames.size(),
+                     frames.size() == 1 ? "" : "s");
   return 0;
 }
 

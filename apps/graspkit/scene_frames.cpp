@@ -7,6 +7,7 @@
 
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
+#include "graspkit/io/gltf_file.hpp"
 #include "graspkit/io/world_file.hpp"
 
 namespace graspkit::cli {
@@ -24,13 +25,9 @@ std::string readText(const std::filesystem::path& file) {
 SceneFrame frameOf(std::string name, World world, bool contacts) {
   SceneFrame frame{std::move(name), std::move(world), {}, {}, {}, false};
   frame.focus = handAndObject(frame.world);
-  std::optional<int> hand = frame.world.firstHand();
-  if (!hand && frame.world.robotCount() > 0) hand = 0;
-  std::optional<BodyRef> object;
-  for (const BodyRef& body : frame.focus)
-    if (body.kind == BodyRef::Kind::Body) object = body;
-  if (contacts && hand && object) {
-    const Grasp grasp = analyzeGrasp(frame.world, *hand, *object);
+  const GraspSubject subject = graspSubject(frame.world);
+  if (contacts && subject.hand && subject.object) {
+    const Grasp grasp = analyzeGrasp(frame.world, *subject.hand, *subject.object);
     frame.contacts = grasp.contacts;
     frame.summary = {{"epsilon", grasp.epsilon},
                      {"volume", grasp.volume},
@@ -143,6 +140,15 @@ std::string frameExtras(const SceneFrame& frame) {
               {"summary", frame.summary.is_null() ? json::object() : frame.summary},
               {"contacts", contacts}}
       .dump();
+}
+
+std::string framesGltf(const std::vector<SceneFrame>& frames) {
+  std::vector<std::string> extras;
+  for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
+  std::vector<GltfScene> scenes;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
+  return gltfBinary(scenes);
 }
 
 bool isPlanFile(const std::filesystem::path& file) {

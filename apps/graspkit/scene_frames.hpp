@@ -41,6 +41,9 @@ std::vector<SceneFrame> loadFrames(const FrameSource& source);
 // with points in metres (glTF's unit) on the object and normals opening the friction cones.
 std::string frameExtras(const SceneFrame& frame);
 
+// The frames as binary glTF: one scene each, named as the frame, with frameExtras.
+std::string framesGltf(const std::vector<SceneFrame>& frames);
+
 // The camera a picture of `frame` starts from: --camera's choice (see kCameraNames).
 ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect);
 

@@ -6,7 +6,6 @@
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
-#include "graspkit/io/gltf_file.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "scene_frames.hpp"
 
@@ -112,11 +111,6 @@ int runView(const ViewOptions& options, std::ostream& out) {
         "npm when it is built; see docs/pictures.md)");
   const std::vector<SceneFrame> frames =
       loadFrames({options.input, options.roots, options.genericRobots, true, 0, options.top});
-  std::vector<std::string> extras;
-  for (const SceneFrame& frame : frames) extras.push_back(frameExtras(frame));
-  std::vector<GltfScene> scenes;
-  for (std::size_t i = 0; i < frames.size(); ++i)
-    scenes.push_back({frames[i].name, &frames[i].world, extras[i]});
   // Contact markers sized by the object, as render sizes them.
   std::vector<BodyRef> object;
   for (const BodyRef& body : frames.front().focus)
@@ -137,12 +131,12 @@ int runView(const ViewOptions& options, std::ostream& out) {
   page += "<script id=\"graspkit-meta\" type=\"application/json\">" + escapeHtml(meta.dump()) +
           "</script>\n";
   page += "<script id=\"graspkit-scene\" type=\"application/octet-stream\">" +
-          base64(gltfBinary(scenes)) + "</script>\n<script>";
+          base64(framesGltf(frames)) + "</script>\n<script>";
   page += kViewerScript;
   page += "</script>\n</body>\n</html>\n";
   writeFileAtomically(options.html, page);
-  out << fmt::format("wrote {} ({} scene{}, {:.1f} MB)\n", options.html.string(), scenes.size(),
-                     scenes.size() == 1 ? "" : "s", page.size() / 1e6);
+  out << fmt::format("wrote {} ({} scene{}, {:.1f} MB)\n", options.html.string(), frames.size(),
+                     frames.size() == 1 ? "" : "s", page.size() / 1e6);
   return 0;
 }
 

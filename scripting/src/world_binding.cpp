@@ -84,8 +84,9 @@ int save(lua_State* L) {
 }
 
 // world:render{out = "file.png", width = 640, height = 480, camera = "auto", contacts = false,
-// samples = 1}: a ray-cast PNG (graspkit render). With contacts, the first hand's contacts with
-// the first graspable body are marked. Returns the file's path.
+// samples = 1}: a ray-cast PNG (graspkit render). With contacts, the contacts of the grasp
+// subject (graspSubject: the first hand and the first graspable body) are marked. Returns the
+// file's path.
 int render(lua_State* L) {
   const ScriptWorld& world = *toWorldHandle(L, 1);
   checkTable(L, 2);
@@ -101,13 +102,9 @@ int render(lua_State* L) {
   const std::vector<BodyRef> focus = handAndObject(world.world);
   request.camera = namedView(world.world, options.string("camera", "auto"), focus,
                              static_cast<double>(request.width) / request.height);
-  if (options.boolean("contacts", false)) {
-    std::optional<int> hand = world.world.firstHand();
-    for (const BodyRef& body : focus) {
-      if (hand && body.kind == BodyRef::Kind::Body)
-        request.contacts = analyzeGrasp(world.world, *hand, body).contacts;
-    }
-  }
+  const GraspSubject subject = graspSubject(world.world);
+  if (options.boolean("contacts", false) && subject.hand && subject.object)
+    request.contacts = analyzeGrasp(world.world, *subject.hand, *subject.object).contacts;
   writePng(graspkit::render(world.world, request), file);
   lua_pushstring(L, file.c_str());
   return 1;

@@ -197,12 +197,9 @@ py::array_t<std::uint8_t> renderWorld(const WorldPtr& w, int width, int height,
     py::gil_scoped_release release;
     const std::vector<BodyRef> focus = handAndObject(world);
     request.camera = namedView(world, camera, focus, static_cast<double>(width) / height);
-    if (contacts) {
-      const std::optional<int> hand = world.firstHand();
-      for (const BodyRef& body : focus)
-        if (hand && body.kind == BodyRef::Kind::Body)
-          request.contacts = analyzeGrasp(world, *hand, body).contacts;
-    }
+    const GraspSubject subject = graspSubject(world);
+    if (contacts && subject.hand && subject.object)
+      request.contacts = analyzeGrasp(world, *subject.hand, *subject.object).contacts;
     image = render(world, request);
   }
   if (!out.is_none()) writePng(image, py::cast<std::filesystem::path>(out));

@@ -46,8 +46,15 @@ BoundingSphere boundingSphere(const World& world, std::span<const BodyRef> bodie
 ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies,
                        const Vector3& direction, double aspect);
 
-// What a picture of a grasp frames: the links of the world's first hand (or first robot) and its
-// first graspable body; every body when it has neither.
+// What a picture of a world shows as its grasp: the world's first hand (its first robot when no
+// robot is a hand) and its first graspable body; either may be absent.
+struct GraspSubject {
+  std::optional<int> hand;
+  std::optional<BodyRef> object;
+};
+GraspSubject graspSubject(const World& world);
+
+// What a picture of a grasp frames: the subject's hand links and object (graspSubject).
 std::vector<BodyRef> handAndObject(const World& world);
 
 // The views render and view offer by name (kViewNames): "world" is the world file's <camera>,

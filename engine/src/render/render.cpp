@@ -80,20 +80,25 @@ ViewCamera frameBodies(const World& world, std::span<const BodyRef> bodies,
   return camera;
 }
 
-std::vector<BodyRef> handAndObject(const World& world) {
-  std::optional<int> hand = world.firstHand();
-  if (!hand && world.robotCount() > 0) hand = 0;
-  std::optional<BodyRef> object;
+GraspSubject graspSubject(const World& world) {
+  GraspSubject subject;
+  subject.hand = world.firstHand();
+  if (!subject.hand && world.robotCount() > 0) subject.hand = 0;
   for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
     if (world.bodies()[static_cast<std::size_t>(i)].isDynamic()) {
-      object = BodyRef::body(i);
+      subject.object = BodyRef::body(i);
       break;
     }
   }
+  return subject;
+}
+
+std::vector<BodyRef> handAndObject(const World& world) {
+  const GraspSubject subject = graspSubject(world);
   std::vector<BodyRef> focus;
   for (const BodyRef& body : worldBodies(world)) {
-    const bool ofHand = body.kind == BodyRef::Kind::Link && hand && body.index == *hand;
-    if (ofHand || (object && body == *object)) focus.push_back(body);
+    const bool ofHand = body.isLink() && subject.hand && body.index == *subject.hand;
+    if (ofHand || (subject.object && body == *subject.object)) focus.push_back(body);
   }
   return focus;
 }
