@@ -1,13 +1,13 @@
 #include "scene_frames.hpp"
 
 #include <fstream>
-#include <iterator>
 
 #include <fmt/format.h>
 
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/io/gltf_file.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/io/world_file.hpp"
 
 namespace graspkit::cli {
@@ -15,12 +15,6 @@ namespace graspkit::cli {
 namespace {
 
 using nlohmann::json;
-
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(SourceLocation{file.string(), 0, {}}, "cannot open the file");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 SceneFrame frameOf(std::string name, World world, bool contacts) {
   SceneFrame frame{std::move(name), std::move(world), {}, {}, {}, false};
@@ -65,7 +59,7 @@ World graspWorldFromPlan(const World& base, const json& plan, const json& grasp)
 
 std::vector<SceneFrame> planFrames(const FrameSource& source) {
   const std::filesystem::path& file = source.input;
-  const json plan = json::parse(readText(file), nullptr, false);
+  const json plan = json::parse(readInputFile(file), nullptr, false);
   if (plan.is_discarded())
     throw Error(SourceLocation{file.string(), 0, {}}, "not valid JSON (a plan from plan --json)");
   if (!plan.is_object())
