@@ -20,3 +20,17 @@ endif()
 if(GRASPKIT_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# Siconos numerics solves the dynamics' friction-contact problems. Debian ships its CMake package
+# with the kernel and control libraries' targets, which libsiconos-numerics-dev alone does not
+# install, so the library and headers are found directly.
+find_path(SICONOS_NUMERICS_INCLUDE_DIR FrictionContactProblem.h PATH_SUFFIXES siconos/numerics
+          REQUIRED)
+find_library(SICONOS_NUMERICS_LIBRARY siconos_numerics REQUIRED)
+if(NOT TARGET SiconosNumerics::numerics)
+  add_library(SiconosNumerics::numerics UNKNOWN IMPORTED)
+  get_filename_component(_siconos_root ${SICONOS_NUMERICS_INCLUDE_DIR} DIRECTORY)
+  set_target_properties(SiconosNumerics::numerics PROPERTIES
+    IMPORTED_LOCATION ${SICONOS_NUMERICS_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES "${SICONOS_NUMERICS_INCLUDE_DIR};${_siconos_root}")
+endif()

@@ -114,6 +114,13 @@ class Robot {
   // Joint values, robot-wide order, DH offsets excluded.
   std::span<const double> jointValues() const { return joint_values_; }
 
+  // Dynamics: DOF velocities (rad/s, mm/s for prismatic DOFs) and the set-points of the DOF
+  // PD controllers. Without set-points a robot holds the posture its first step finds.
+  std::span<const double> dofVelocities() const { return dof_velocities_; }
+  void setDofVelocities(std::span<const double> velocities);
+  std::span<const double> dofTargets() const { return dof_targets_; }
+  void setDofTargets(std::span<const double> targets);  // an empty span clears them
+
   std::span<const BreakawayState> breakaway() const { return breakaway_; }
   void setBreakaway(int joint, BreakawayState state);
 
@@ -134,6 +141,8 @@ class Robot {
   std::vector<double> joint_values_;
   std::vector<BreakawayState> breakaway_;
   std::vector<std::vector<Transform>> link_poses_;
+  std::vector<double> dof_velocities_;
+  std::vector<double> dof_targets_;
 };
 
 }  // namespace graspkit

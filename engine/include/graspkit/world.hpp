@@ -82,6 +82,17 @@ class World {
   CollisionFilter& collisionFilter() { return collision_filter_; }
   const CollisionFilter& collisionFilter() const { return collision_filter_; }
 
+  // Dynamics (dynamics.hpp): gravity in mm/s^2, on by default (GraspIt! has none: set it to
+  // zero to reproduce it), and the simulated time in seconds.
+  const Vector3& gravity() const { return gravity_; }
+  void setGravity(const Vector3& gravity) { gravity_ = gravity; }
+  double time() const { return time_; }
+  void setTime(double time) { time_ = time; }
+  // A robot's DOF velocities and PD set-points (see Robot). Throw graspkit::Error for a bad
+  // index, a wrong count or a value that is not finite.
+  void setDofVelocities(int robot, std::span<const double> velocities);
+  void setDofTargets(int robot, std::span<const double> targets);
+
   World clone() const { return *this; }
 
  private:
@@ -96,6 +107,8 @@ class World {
   std::vector<Connection> connections_;
   std::optional<Camera> camera_;
   CollisionFilter collision_filter_;
+  Vector3 gravity_ = Vector3(0.0, 0.0, -9810.0);
+  double time_ = 0.0;
 };
 
 }  // namespace graspkit

@@ -74,9 +74,39 @@ Robot::Robot(std::shared_ptr<const RobotModel> model) : model_(std::move(model))
   }
   joint_values_.assign(model_->jointCount(), 0.0);
   breakaway_.assign(model_->jointCount(), BreakawayState{});
+  dof_velocities_.assign(model_->dofs.size(), 0.0);
   link_poses_.resize(model_->chains.size());
   updateJoints();
   updateLinkPoses();
+}
+
+namespace {
+void checkDofVector(const Robot& robot, std::span<const double> values, const char* what) {
+  if (values.size() != static_cast<std::size_t>(robot.dofCount())) {
+    throw Error(fmt::format("robot '{}' has {} DOFs, {} {} given", robot.name(), robot.dofCount(),
+                            values.size(), what));
+  }
+  for (std::size_t d = 0; d < values.size(); ++d) {
+    if (!std::isfinite(values[d])) {
+      throw Error(fmt::format("robot '{}': DOF {} {} is not a finite number", robot.name(), d,
+                              what));
+    }
+  }
+}
+}  // namespace
+
+void Robot::setDofVelocities(std::span<const double> velocities) {
+  checkDofVector(*this, velocities, "velocities");
+  dof_velocities_.assign(velocities.begin(), velocities.end());
+}
+
+void Robot::setDofTargets(std::span<const double> targets) {
+  if (targets.empty()) {
+    dof_targets_.clear();
+    return;
+  }
+  checkDofVector(*this, targets, "targets");
+  dof_targets_.assign(targets.begin(), targets.end());
 }
 
 void Robot::setPose(const Transform& pose) {

@@ -109,6 +109,14 @@ void World::setDofValues(int robot, std::span<const double> values, LimitPolicy 
   updateChildren(robot);
 }
 
+void World::setDofVelocities(int robot, std::span<const double> velocities) {
+  mutableRobot(robot).setDofVelocities(velocities);
+}
+
+void World::setDofTargets(int robot, std::span<const double> targets) {
+  mutableRobot(robot).setDofTargets(targets);
+}
+
 Transform World::mountPose(const Connection& connection) const {
   return robot(connection.parentRobot).chainEndPose(connection.parentChain) * connection.offset;
 }

@@ -1,0 +1,456 @@
+// One time step, as dynamics.hpp describes it: free motion, then the contact and joint-limit
+// impulses from Siconos, then the new poses.
+
+#include "graspkit/dynamics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "dynamics/friction_contact_solver.hpp"
+#include "dynamics/generalized_coordinates.hpp"
+#include "graspkit/collision.hpp"
+#include "graspkit/contact_search.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit {
+
+namespace {
+
+using dynamics::GeneralizedCoordinates;
+using dynamics::MatrixX;
+using dynamics::VectorX;
+
+// Share of a penetration below kRestingSeparation removed per step (GraspIt!'s ERP is 0.05; a
+// larger share settles stacks faster, and the push-out speed stays below 10 mm/s).
+constexpr double kErrorReduction = 0.2;
+constexpr double kMaxContactMargin = 20.0;  // mm
+// Joint-limit constraints enter the problem this close to a limit (rad or mm), or closer than
+// two steps of the DOF's motion.
+constexpr double kLimitMargin = 1e-3;
+// Coulomb joint friction fades in below this joint speed (rad/s, mm/s) so it cannot chatter.
+constexpr double kJointFrictionSpeed = 1e-3;
+
+double wrapAngle(double angle) {
+  return std::remainder(angle, 2.0 * M_PI);
+}
+
+std::string describe(const World& world, const BodyRef& ref) {
+  return bodyName(world, ref);
+}
+
+// The velocity vector of every coordinate, from the world's bodies and robots.
+VectorX currentVelocities(const World& world, const GeneralizedCoordinates& coordinates) {
+  VectorX u = VectorX::Zero(coordinates.size());
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const int offset = coordinates.robotOffset(r);
+    const auto velocities = world.robot(r).dofVelocities();
+    for (std::size_t d = 0; d < velocities.size(); ++d) u[offset + d] = velocities[d];
+  }
+  for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+    const int offset = coordinates.bodyOffset(static_cast<int>(b));
+    if (offset >= 0) u.segment<6>(offset) = world.bodies()[b].state.v;
+  }
+  return u;
+}
+
+void checkMass(const World& world, const BodyRef& ref) {
+  const BodyModel& model = bodyModel(world, ref);
+  const bool inertia_ok = model.inertia.allFinite() && model.inertia.determinant() > 0.0;
+  if (!(model.mass > 0.0 && std::isfinite(model.mass)) || !inertia_ok) {
+    throw Error(SourceLocation{model.file.string(), 0, "mass"},
+                fmt::format("'{}' takes part in dynamics but its mass ({} g) or inertia is not "
+                            "positive",
+                            describe(world, ref), model.mass));
+  }
+}
+
+// Mass matrix and generalized forces (gravity, gyroscopic torques of free bodies).
+struct MassAndForces {
+  MatrixX M;
+  VectorX f;
+};
+
+MassAndForces massAndForces(const World& world, const GeneralizedCoordinates& coordinates,
+                            const VectorX& u) {
+  const int n = coordinates.size();
+  MassAndForces out{MatrixX::Zero(n, n), VectorX::Zero(n)};
+  for (const BodyRef& ref : coordinates.movingBodies()) {
+    checkMass(world, ref);
+    const BodyModel& model = bodyModel(world, ref);
+    const Transform pose = bodyPose(world, ref);
+    const Matrix3 R = pose.linear();
+    const Matrix3 inertia = model.mass * R * model.inertia * R.transpose();
+    const Vector3 weight = model.mass * world.gravity();
+    const int free = coordinates.motion(ref).freeCoordinate;
+    if (free >= 0) {
+      out.M.block<3, 3>(free, free) = model.mass * Matrix3::Identity();
+      out.M.block<3, 3>(free + 3, free + 3) = inertia;
+      const Vector3 omega = u.segment<3>(free + 3);
+      out.f.segment<3>(free) += weight;
+      out.f.segment<3>(free + 3) -= omega.cross(inertia * omega);
+      continue;
+    }
+    const MatrixX Jv = coordinates.linearJacobian(ref, pose * model.cog);
+    const MatrixX Jw = coordinates.angularJacobian(ref);
+    out.M += model.mass * Jv.transpose() * Jv + Jw.transpose() * inertia * Jw;
+    out.f += Jv.transpose() * weight;
+  }
+  return out;
+}
+
+// DOF PD controllers and passive joint springs and friction. Stiffness and damping that stay
+// below maxEffort are taken implicitly (added to the mass matrix as h*Kd + h^2*Kp), so GraspIt!'s
+// stiff gains are stable at its 2.5 ms step; a saturated controller pushes with maxEffort.
+void addJointForces(World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
+                    double h, VectorX& f, VectorX& damping) {
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const Robot& robot = world.robot(r);
+    const int offset = coordinates.robotOffset(r);
+    if (offset < 0) continue;
+    if (robot.dofTargets().empty()) world.setDofTargets(r, robot.dofValues());
+    const RobotModel& model = robot.model();
+    for (int d = 0; d < robot.dofCount(); ++d) {
+      const Dof& dof = model.dofs[d];
+      if (dof.Kp == 0.0 && dof.Kd == 0.0) continue;
+      const int i = offset + d;
+      const bool revolute =
+          dof.joints.empty() || model.joint(dof.joints.front()).type == JointType::Revolute;
+      double error = robot.dofTargets()[d] - robot.dofValues()[d];
+      if (revolute) error = wrapAngle(error);
+      const double force = dof.Kp * error - dof.Kd * u[i];
+      if (dof.maxEffort > 0.0 && std::abs(force) > dof.maxEffort) {
+        f[i] += std::copysign(dof.maxEffort, force);
+      } else {
+        f[i] += dof.Kp * error;
+        damping[i] += h * dof.Kd + h * h * dof.Kp;
+      }
+    }
+    for (int j = 0; j < model.jointCount(); ++j) {
+      const Joint& joint = model.joint(j);
+      const int i = offset + joint.dof;
+      const double velocity = joint.ratio * u[i];
+      const double spring = -joint.springStiffness * (robot.jointValues()[j] - joint.restValue);
+      const double friction =
+          -joint.coulombFriction * std::clamp(velocity / kJointFrictionSpeed, -1.0, 1.0);
+      f[i] += joint.ratio * (spring + friction);
+      damping[i] += h * joint.ratio * joint.ratio * joint.viscousFriction;
+    }
+  }
+}
+
+// The fastest any point of a moving body goes, for the contact margin.
+double fastestPointSpeed(const World& world, const GeneralizedCoordinates& coordinates,
+                         const VectorX& u) {
+  double fastest = 0.0;
+  for (const BodyRef& ref : coordinates.movingBodies()) {
+    const BodyModel& model = bodyModel(world, ref);
+    const Vector3 centre = bodyPose(world, ref) * model.cog;
+    const double linear = (coordinates.linearJacobian(ref, centre) * u).norm();
+    const double angular = (coordinates.angularJacobian(ref) * u).norm();
+    fastest = std::max(fastest, linear + angular * model.maxRadius);
+  }
+  return fastest;
+}
+
+// The constraints of one step: 3 rows each (normal, tangent, tangent).
+struct Constraints {
+  MatrixX G;                   // rows x coordinates
+  VectorX offset;              // added to G*u: the gap the step may close (normal rows)
+  VectorX mu;                  // per constraint
+  VectorX compliance;          // per constraint, added to W's normal diagonal
+  std::vector<int> limitRows;  // first row of each joint-limit constraint
+  std::vector<std::pair<BodyRef, BodyRef>> bodies;  // per contact constraint
+  int contacts = 0;
+  int limits = 0;
+
+  void reserve(int n) { G.resize(0, n); }
+  int add(const MatrixX& rows, double gap_offset, double friction, double soft) {
+    const int first = static_cast<int>(G.rows());
+    G.conservativeResize(first + 3, Eigen::NoChange);
+    G.middleRows(first, 3) = rows;
+    offset.conservativeResize(first + 3);
+    offset.segment<3>(first) << gap_offset, 0.0, 0.0;
+    mu.conservativeResize(mu.size() + 1);
+    mu[mu.size() - 1] = friction;
+    compliance.conservativeResize(compliance.size() + 1);
+    compliance[compliance.size() - 1] = soft;
+    return first;
+  }
+};
+
+// How far the step may close a gap: all of it down to the resting separation; a penetration
+// beyond it is pushed out at a share per step.
+double gapOffset(double separation, double h) {
+  const double gap = separation - kRestingSeparation;
+  return gap > 0.0 ? gap / h : kErrorReduction * gap / h;
+}
+
+// A soft contact (either body has <youngs>) gives way like a mattress of GraspIt!'s 3 mm
+// thickness over the patch that its neighbourhood radius spans: k = E * pi r^2 / 3 mm.
+// 1 Pa is 1 g/(mm s^2) in these units. Returns the compliance added to W, 1/(h^2 k).
+double contactCompliance(const BodyModel& a, const BodyModel& b, double h) {
+  double stiffness = 0.0;
+  for (const BodyModel* model : {&a, &b}) {
+    if (!model->youngs || *model->youngs <= 0.0) continue;
+    const double radius = 0.4 * 1000.0 * std::cbrt(1.0 / *model->youngs);
+    const double k = *model->youngs * M_PI * radius * radius / 3.0;
+    stiffness = stiffness == 0.0 ? k : 1.0 / (1.0 / stiffness + 1.0 / k);  // in series
+  }
+  return stiffness > 0.0 ? 1.0 / (h * h * stiffness) : 0.0;
+}
+
+void addContacts(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
+                 double h, const std::string& state, Constraints& constraints) {
+  const double margin = std::min(
+      kMaxContactMargin, kContactThreshold + 2.0 * h * fastestPointSpeed(world, coordinates, u));
+  ContactRequest request;
+  request.threshold = margin;
+  request.softContacts = false;
+  request.graspitDuplicates = false;
+  for (const BodyPair& pair : nearbyPairs(world, margin)) {
+    if (!coordinates.motion(pair.first).moves() && !coordinates.motion(pair.second).moves()) {
+      continue;
+    }
+    const ContactResult found = findContacts(world, pair.first, pair.second, request);
+    if (found.interpenetrating) {
+      throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' and '{}' interpenetrate", world.time(),
+                                      describe(world, pair.first), describe(world, pair.second)),
+                          state);
+    }
+    const BodyModel& first = bodyModel(world, pair.first);
+    const BodyModel& second = bodyModel(world, pair.second);
+    const double compliance = contactCompliance(first, second, h);
+    for (const Contact& contact : found.contacts) {
+      const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
+                               coordinates.linearJacobian(pair.second, contact.position2);
+      MatrixX rows(3, coordinates.size());
+      rows.row(0) = contact.frame.col(2).transpose() * relative;
+      rows.row(1) = contact.frame.col(0).transpose() * relative;
+      rows.row(2) = contact.frame.col(1).transpose() * relative;
+      if (rows.isZero()) continue;
+      const double slip = (rows.bottomRows(2) * u).norm();
+      const double mu = frictionCoefficient(first.material, second.material, true, slip);
+      constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
+      constraints.bodies.emplace_back(pair.first, pair.second);
+      ++constraints.contacts;
+    }
+  }
+}
+
+void addJointLimits(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
+                    double h, Constraints& constraints) {
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const int offset = coordinates.robotOffset(r);
+    if (offset < 0) continue;
+    const Robot& robot = world.robot(r);
+    for (int d = 0; d < robot.dofCount(); ++d) {
+      const Dof& dof = robot.model().dofs[d];
+      const int i = offset + d;
+      const double reach = kLimitMargin + 2.0 * h * std::abs(u[i]);
+      const double value = robot.dofValues()[d];
+      for (const double sign : {1.0, -1.0}) {
+        const double room = sign > 0 ? value - dof.min : dof.max - value;
+        if (room > reach) continue;
+        MatrixX rows = MatrixX::Zero(3, coordinates.size());
+        rows(0, i) = sign;
+        const double gap = room / h;
+        constraints.limitRows.push_back(
+            constraints.add(rows, gap > 0.0 ? gap : kErrorReduction * gap, 0.0, 0.0));
+        ++constraints.limits;
+      }
+    }
+  }
+}
+
+void checkVelocities(const World& world, const GeneralizedCoordinates& coordinates,
+                     const VectorX& u, const std::string& state) {
+  if (!u.allFinite()) {
+    throw DynamicsError(
+        fmt::format("at t = {:.4f} s, a velocity is not a finite number", world.time()), state);
+  }
+  for (const BodyRef& ref : coordinates.movingBodies()) {
+    const BodyModel& model = bodyModel(world, ref);
+    const Vector3 centre = bodyPose(world, ref) * model.cog;
+    const double linear = (coordinates.linearJacobian(ref, centre) * u).norm();
+    const double angular = (coordinates.angularJacobian(ref) * u).norm();
+    if (linear > kRunawaySpeed || angular > kRunawayAngularSpeed) {
+      throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' runs away at {:.0f} mm/s and {:.1f} "
+                                      "rad/s: the simulation is unstable",
+                                      world.time(), describe(world, ref), linear, angular),
+                          state);
+    }
+  }
+}
+
+// New poses from the new velocities: positions by the velocity at the end of the step
+// (semi-implicit Euler), except that a free body no contact pushed follows the exact parabola
+// of its free flight, so a throw or a fall has no integration error.
+void integrate(World& world, const GeneralizedCoordinates& coordinates, const VectorX& u, double h,
+               const std::vector<bool>& pushed) {
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const int offset = coordinates.robotOffset(r);
+    if (offset < 0) continue;
+    const int count = world.robot(r).dofCount();
+    std::vector<double> values(world.robot(r).dofValues().begin(),
+                               world.robot(r).dofValues().end());
+    std::vector<double> velocities(count);
+    for (int d = 0; d < count; ++d) {
+      velocities[d] = u[offset + d];
+      values[d] += h * velocities[d];
+    }
+    world.setDofValues(r, values, LimitPolicy::Ignore);
+    world.setDofVelocities(r, velocities);
+  }
+  for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+    const int offset = coordinates.bodyOffset(static_cast<int>(b));
+    if (offset < 0) continue;
+    Body& body = world.bodies()[b];
+    const Vector3 v = u.segment<3>(offset);
+    const Vector3 w = u.segment<3>(offset + 3);
+    Vector3 centre = body.pose * body.model->cog + h * v;
+    if (!pushed[b]) centre -= 0.5 * h * h * world.gravity();
+    Quaternion rotation(body.pose.linear());
+    const double angle = w.norm() * h;
+    if (angle > 0.0) rotation = Eigen::AngleAxisd(angle, w.normalized()) * rotation;
+    rotation.normalize();
+    Transform pose = Transform::Identity();
+    pose.linear() = rotation.toRotationMatrix();
+    pose.translation() = centre - pose.linear() * body.model->cog;
+    body.setPose(pose);
+    body.state.v = u.segment<6>(offset);
+  }
+}
+
+}  // namespace
+
+std::string dynamicStateJson(const World& world) {
+  nlohmann::json state;
+  state["time"] = world.time();
+  state["gravity"] = {world.gravity().x(), world.gravity().y(), world.gravity().z()};
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const Body& body : world.bodies()) {
+    const Quaternion q(body.pose.linear());
+    const Vector3 t = body.pose.translation();
+    bodies.push_back(
+        {{"name", body.name},
+         {"dynamic", body.isDynamic()},
+         {"position", {t.x(), t.y(), t.z()}},
+         {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+         {"velocity", std::vector<double>(body.state.v.data(), body.state.v.data() + 6)}});
+  }
+  state["bodies"] = bodies;
+  nlohmann::json robots = nlohmann::json::array();
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const Robot& robot = world.robot(r);
+    const auto list = [](std::span<const double> values) {
+      return std::vector<double>(values.begin(), values.end());
+    };
+    robots.push_back({{"name", robot.name()},
+                      {"dof_values", list(robot.dofValues())},
+                      {"dof_velocities", list(robot.dofVelocities())},
+                      {"dof_targets", list(robot.dofTargets())}});
+  }
+  state["robots"] = robots;
+  return state.dump();
+}
+
+StepReport step(World& world, double h) {
+  if (!(h > 0.0 && h <= kMaxTimeStep)) {
+    throw Error(fmt::format("time step {} s is outside (0, {}] s", h, kMaxTimeStep));
+  }
+  if (!world.gravity().allFinite()) throw Error("gravity is not a finite vector");
+  const std::string state = dynamicStateJson(world);
+  const GeneralizedCoordinates coordinates(world);
+  const int n = coordinates.size();
+  StepReport report;
+  if (n == 0) {
+    world.setTime(world.time() + h);
+    report.time = world.time();
+    return report;
+  }
+  const VectorX u = currentVelocities(world, coordinates);
+  checkVelocities(world, coordinates, u, state);
+
+  MassAndForces dynamics = massAndForces(world, coordinates, u);
+  VectorX damping = VectorX::Zero(n);
+  addJointForces(world, coordinates, u, h, dynamics.f, damping);
+  MatrixX effective = dynamics.M;
+  effective.diagonal() += damping;
+  // Coordinates nothing with mass hangs on (a DOF that only moves massless parts) keep a unit
+  // mass so the system stays solvable; they move only as their forces say.
+  for (int i = 0; i < n; ++i) {
+    if (effective(i, i) <= 0.0) effective(i, i) = 1.0;
+  }
+  const Eigen::LDLT<MatrixX> solver(effective);
+  const VectorX free_velocity = solver.solve(dynamics.M * u + h * dynamics.f);
+
+  Constraints constraints;
+  constraints.reserve(n);
+  addContacts(world, coordinates, u, h, state, constraints);
+  addJointLimits(world, coordinates, u, h, constraints);
+  report.contacts = constraints.contacts;
+  report.jointLimits = constraints.limits;
+
+  VectorX velocity = free_velocity;
+  std::vector<bool> pushed(world.bodies().size(), false);
+  if (constraints.G.rows() > 0) {
+    const MatrixX MinvGt = solver.solve(constraints.G.transpose());
+    MatrixX W = constraints.G * MinvGt;
+    const int count = static_cast<int>(constraints.mu.size());
+    for (int c = 0; c < count; ++c) W(3 * c, 3 * c) += constraints.compliance[c];
+    for (const int row : constraints.limitRows) {  // frictionless: tangents carry nothing
+      W(row + 1, row + 1) = W(row + 2, row + 2) = 1.0;
+    }
+    const VectorX q = constraints.G * free_velocity + constraints.offset;
+    const dynamics::FrictionContactSolution solution =
+        dynamics::solveFrictionContact(W, q, constraints.mu);
+    report.solverIterations = solution.iterations;
+    report.solverError = solution.error;
+    if (!solution.solved) {
+      throw DynamicsError(fmt::format("at t = {:.4f} s, the contact problem ({} contacts, {} "
+                                      "joint limits) could not be solved: Siconos {} stopped at "
+                                      "residual {:.3g}",
+                                      world.time(), constraints.contacts, constraints.limits,
+                                      solution.solver, solution.error),
+                          state);
+    }
+    velocity += MinvGt * solution.reaction;
+    for (int c = 0; c < constraints.contacts; ++c) {
+      if (solution.reaction[3 * c] <= 0.0) continue;
+      ++report.activeContacts;
+      for (const BodyRef& ref : {constraints.bodies[c].first, constraints.bodies[c].second}) {
+        if (ref.kind == BodyRef::Kind::Body) pushed[ref.index] = true;
+      }
+    }
+  }
+  checkVelocities(world, coordinates, velocity, state);
+  integrate(world, coordinates, velocity, h, pushed);
+  world.setTime(world.time() + h);
+  report.time = world.time();
+  return report;
+}
+
+SimulateResult simulate(World& world, const SimulateRequest& request) {
+  if (!(request.seconds >= 0.0 && std::isfinite(request.seconds))) {
+    throw Error(fmt::format("simulated time {} s must be a finite number >= 0", request.seconds));
+  }
+  SimulateResult result;
+  const double end = world.time() + request.seconds;
+  // Steps until the end time, the last one shortened to land on it.
+  while (world.time() < end - 1e-12) {
+    const double h = std::min(request.dt, end - world.time());
+    result.last = step(world, h < request.dt * 1e-6 ? request.dt : h);
+    ++result.steps;
+    if (request.onStep && !request.onStep(world, result.last)) {
+      result.stoppedEarly = true;
+      break;
+    }
+  }
+  result.time = world.time();
+  return result;
+}
+
+}  // namespace graspkit

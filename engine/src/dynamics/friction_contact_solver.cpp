@@ -1,0 +1,66 @@
+#include "dynamics/friction_contact_solver.hpp"
+
+#include <FrictionContactProblem.h>
+#include <Friction_cst.h>
+#include <NonSmoothDrivers.h>
+#include <NumericsMatrix.h>
+#include <NumericsVerbose.h>
+#include <SolverOptions.h>
+
+#include <memory>
+
+namespace graspkit::dynamics {
+
+namespace {
+
+struct OptionsDeleter {
+  void operator()(SolverOptions* options) const { solver_options_delete(options); }
+};
+
+// Runs one Siconos solver on the problem; the problem's arrays stay owned by the caller.
+bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, VectorX& q,
+               VectorX& mu, FrictionContactSolution& solution) {
+  const int rows = static_cast<int>(q.size());
+  NumericsMatrix* matrix = NM_create_from_data(NM_DENSE, rows, rows, W.data());
+  FrictionContactProblem problem{};
+  problem.dimension = 3;
+  problem.numberOfContacts = rows / 3;
+  problem.M = matrix;
+  problem.q = q.data();
+  problem.mu = mu.data();
+  std::unique_ptr<SolverOptions, OptionsDeleter> options(solver_options_create(solver_id));
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
+  solution.reaction = VectorX::Zero(rows);
+  solution.velocity = VectorX::Zero(rows);
+  const int info =
+      fc3d_driver(&problem, solution.reaction.data(), solution.velocity.data(), options.get());
+  solution.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  solution.error = options->dparam[SICONOS_DPARAM_RESIDU];
+  NM_free_not_dense(matrix);
+  return info == 0 && solution.reaction.allFinite();
+}
+
+}  // namespace
+
+FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX& q_in,
+                                             const VectorX& mu_in, double tolerance) {
+  FrictionContactSolution solution;
+  if (q_in.size() == 0) {
+    solution.solved = true;
+    return solution;
+  }
+  numerics_set_verbose(0);
+  // Siconos takes non-const pointers; it reads them only.
+  MatrixX W = W_in;
+  VectorX q = q_in;
+  VectorX mu = mu_in;
+  solution.solver = "NSGS";
+  solution.solved = runSolver(SICONOS_FRICTION_3D_NSGS, 2000, tolerance, W, q, mu, solution);
+  if (solution.solved) return solution;
+  solution.solver = "NSN-AC";
+  solution.solved = runSolver(SICONOS_FRICTION_3D_NSN_AC, 200, tolerance, W, q, mu, solution);
+  return solution;
+}
+
+}  // namespace graspkit::dynamics

@@ -1,0 +1,305 @@
+// Time stepping against closed forms: free fall, a cube landing and resting, a block on an
+// incline below and above its friction angle, a pendulum's period, a DOF PD controller and its
+// effort limit, and the errors of bad input and bad states.
+
+#include "graspkit/dynamics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "graspkit/contact.hpp"
+#include "graspkit/mass_properties.hpp"
+#include "graspkit/world.hpp"
+#include "test_meshes.hpp"
+
+namespace graspkit {
+namespace {
+
+constexpr double g = kStandardGravity;
+
+Body makeBody(const std::shared_ptr<TriangleMesh>& mesh, BodyKind kind, Material material,
+              double mass, const std::string& name) {
+  auto model = std::make_shared<BodyModel>();
+  model->name = name;
+  model->mesh = mesh;
+  model->material = material;
+  model->mass = mass;
+  const MassProperties properties = computeMassProperties(*mesh);
+  model->cog = properties.centroid;
+  model->inertia = properties.inertia;
+  model->maxRadius = maxRadius(*mesh, properties.centroid);
+  Body body;
+  body.model = model;
+  body.kind = kind;
+  body.name = name;
+  body.setPose(Transform::Identity());
+  return body;
+}
+
+Transform translation(double x, double y, double z) {
+  Transform t = Transform::Identity();
+  t.translation() = Vector3(x, y, z);
+  return t;
+}
+
+// A 50 mm wooden cube (centred on its frame) and a 1 m x 1 m floor slab whose top is z = 0.
+Body cube(double mass = 300.0) {
+  return makeBody(test::box(Vector3(-25, -25, -25), Vector3(25, 25, 25)), BodyKind::Graspable,
+                  Material::Wood, mass, "cube");
+}
+Body floorSlab() {
+  return makeBody(test::box(Vector3(-500, -500, -20), Vector3(500, 500, 0)), BodyKind::Obstacle,
+                  Material::Wood, 1000.0, "floor");
+}
+
+TEST(Dynamics, FreeFallFollowsTheParabola) {
+  World world;
+  Body body = cube();
+  body.setPose(translation(0, 0, 3000));
+  body.state.v << 100, 0, 0, 0, 0, 0;
+  world.addBody(body);
+  const SimulateResult result = simulate(world, {.seconds = 0.7});
+  EXPECT_EQ(result.steps, 280);
+  const double t = world.time();
+  const Vector3 centre = world.bodies()[0].pose.translation();
+  const double drop = g * t * t / 2.0;
+  EXPECT_NEAR(centre.z(), 3000.0 - drop, 1e-3 * drop);
+  EXPECT_NEAR(centre.x(), 100.0 * t, 1e-9);
+  EXPECT_NEAR(world.bodies()[0].state.v.z(), -g * t, 1e-6);
+}
+
+TEST(Dynamics, DroppedCubeLandsWithoutBounceAndStaysPut) {
+  World world;
+  world.addBody(floorSlab());
+  Body body = cube();
+  body.setPose(translation(0, 0, 125));  // 100 mm above the floor
+  body.state.v << 0, 0, -500, 0, 0, 0;
+  const int index = world.addBody(body);
+  // Falls 100 mm: lands after t = (-500 + sqrt(500^2 + 2 g 100)) / g = 0.1000 s.
+  double landed = -1.0;
+  double highest_after_landing = -1e9;
+  simulate(world, {.seconds = 1.0, .onStep = [&](const World& w, const StepReport& report) {
+                     const double z = w.bodies()[index].pose.translation().z();
+                     if (landed < 0 && report.activeContacts > 0) landed = w.time();
+                     if (landed >= 0) highest_after_landing = std::max(highest_after_landing, z);
+                     return true;
+                   }});
+  const double expected_landing = (-500.0 + std::sqrt(500.0 * 500.0 + 2.0 * g * 100.0)) / g;
+  EXPECT_NEAR(landed, expected_landing, 0.0051);
+  const Transform rest = world.bodies()[index].pose;
+  EXPECT_NEAR(rest.translation().z(), 25.0 + kRestingSeparation, 0.05);
+  EXPECT_LT(highest_after_landing, 25.0 + kContactThreshold + 0.5);  // no bounce
+  simulate(world, {.seconds = 5.0});
+  const Transform later = world.bodies()[index].pose;
+  EXPECT_LT((later.translation() - rest.translation()).norm(), 0.1);
+  EXPECT_LT(Quaternion(later.linear()).angularDistance(Quaternion(rest.linear())), 1e-4);
+}
+
+// A wooden block on a wooden incline of angle theta, released at rest. Returns how far it slid
+// down the slope between t = 0.5 s and t = 1.5 s, and its displacement over the first 2 s.
+struct InclineRun {
+  double acceleration = 0.0;
+  double moved = 0.0;
+};
+
+InclineRun slideOnIncline(double theta) {
+  World world;
+  const Transform tilt(Eigen::AngleAxisd(theta, Vector3::UnitX()));
+  // Long enough down the slope for 2 s of sliding (about 3.5 m).
+  Body slab = makeBody(test::box(Vector3(-500, -5000, -20), Vector3(500, 500, 0)),
+                       BodyKind::Obstacle, Material::Wood, 1000.0, "incline");
+  slab.setPose(tilt);
+  world.addBody(slab);
+  Body body = cube(200.0);
+  body.setPose(tilt * translation(0, 300, 25.0 + kRestingSeparation));
+  const int index = world.addBody(body);
+  const Vector3 start = world.bodies()[index].pose.translation();
+  const Vector3 down_slope = tilt.linear() * Vector3(0, -1, 0);  // z falls along -y' for theta > 0
+  std::vector<double> along;
+  simulate(world,
+           {.seconds = 2.0, .onStep = [&](const World& w, const StepReport&) {
+              along.push_back((w.bodies()[index].pose.translation() - start).dot(down_slope));
+              return true;
+            }});
+  InclineRun run;
+  run.moved = (world.bodies()[index].pose.translation() - start).norm();
+  // s(t) = s0 + v0 t + a t^2 / 2 sampled at t1 = 0.5, t2 = 1.0, t3 = 1.5 s: a from the second
+  // difference.
+  const double dt = kDefaultTimeStep;
+  const auto at = [&](double t) { return along[static_cast<int>(std::lround(t / dt)) - 1]; };
+  run.acceleration = (at(1.5) - 2.0 * at(1.0) + at(0.5)) / (0.5 * 0.5);
+  return run;
+}
+
+TEST(Dynamics, BlockStaysOnAnInclineBelowTheFrictionAngle) {
+  const double mu_s = staticFriction(Material::Wood, Material::Wood);
+  const InclineRun run = slideOnIncline(std::atan(mu_s) - 0.05);
+  EXPECT_LT(run.moved, 0.1);
+}
+
+TEST(Dynamics, BlockSlidesAboveTheFrictionAngleWithKineticFriction) {
+  const double mu_s = staticFriction(Material::Wood, Material::Wood);
+  const double mu_k = kineticFriction(Material::Wood, Material::Wood);
+  const double theta = std::atan(mu_s) + 0.08;
+  const InclineRun run = slideOnIncline(theta);
+  const double expected = g * (std::sin(theta) - mu_k * std::cos(theta));
+  EXPECT_NEAR(run.acceleration, expected, 0.02 * expected);
+}
+
+// A robot of one revolute joint whose axis is the world's x axis, carrying a 40 mm cube whose
+// centre sits `arm` mm from the axis (DH a = arm). Passive unless gains are given.
+std::shared_ptr<RobotModel> pendulumModel(double arm, double Kp = 0, double Kd = 0,
+                                          double max_effort = 0) {
+  auto model = std::make_shared<RobotModel>();
+  model->name = "pendulum";
+  model->type = "Robot";
+  model->isHand = false;
+  KinematicChain chain;
+  Joint joint;
+  joint.a = arm;
+  joint.min = -M_PI;
+  joint.max = M_PI;
+  chain.joints.push_back(joint);
+  Link link;
+  link.lastJoint = 0;
+  link.name = "pendulum_chain0_link0";
+  Body bob = makeBody(test::box(Vector3(-20, -20, -20), Vector3(20, 20, 20)), BodyKind::Obstacle,
+                      Material::Metal, 500.0, "bob");
+  link.body = bob.model;
+  chain.links.push_back(link);
+  model->chains.push_back(chain);
+  Dof dof;
+  dof.min = -M_PI;
+  dof.max = M_PI;
+  dof.joints = {0};
+  dof.Kp = Kp;
+  dof.Kd = Kd;
+  dof.maxEffort = max_effort;
+  model->dofs.push_back(dof);
+  return model;
+}
+
+// The joint's axis is the base's z: turn the base so that z is the world's x, and the arm
+// (the base's x at angle 0) hangs along -z of the world at angle 0.
+int addPendulum(World& world, std::shared_ptr<RobotModel> model) {
+  Robot robot(std::move(model));
+  Transform base = Transform::Identity();
+  base.linear() << 0, 0, 1,  //
+      0, 1, 0,               //
+      -1, 0, 0;              // columns: base x -> world -z, y -> y, z -> world x
+  robot.setPose(base);
+  return world.addRobot(robot);
+}
+
+TEST(Dynamics, PendulumPeriodMatchesTheCompoundPendulum) {
+  const double arm = 150.0;
+  World world;
+  const int r = addPendulum(world, pendulumModel(arm));
+  const Transform base = world.robot(r).pose();
+  ASSERT_NEAR(base.linear().col(2).dot(Vector3::UnitX()), 1.0, 1e-12);
+  // Where gravity pulls the bob at angle 0: the arm must hang straight down there.
+  const Vector3 hang = world.robot(r).linkPose(0, 0).translation() - base.translation();
+  ASSERT_NEAR(hang.normalized().z(), -1.0, 1e-12);
+  const double amplitude = 0.03;
+  const std::vector<double> start{amplitude};
+  world.setDofValues(r, start);
+  // Cube of side 40 mm: I about its centre per unit mass = (40^2 + 40^2) / 12.
+  const double inertia_pivot = 500.0 * (2.0 * 40.0 * 40.0 / 12.0 + arm * arm);
+  const double period = 2.0 * M_PI * std::sqrt(inertia_pivot / (500.0 * g * arm));
+  // Crossings of zero velocity from positive to negative angle: one per period.
+  std::vector<double> turns;
+  double previous = 0.0;
+  simulate(world, {.seconds = 4.0 * period + 0.1,
+                   .dt = 0.001,
+                   .onStep = [&](const World& w, const StepReport&) {
+                     const double v = w.robot(r).dofVelocities()[0];
+                     if (previous > 0.0 && v <= 0.0) turns.push_back(w.time());
+                     previous = v;
+                     return true;
+                   }});
+  ASSERT_GE(turns.size(), 3u);
+  const double measured = (turns.back() - turns.front()) / (turns.size() - 1);
+  EXPECT_NEAR(measured, period, 0.01 * period);
+}
+
+TEST(Dynamics, PdControllerReachesItsSetPoint) {
+  World world;
+  world.setGravity(Vector3::Zero());
+  const int r = addPendulum(world, pendulumModel(100.0, 1.0e9, 1.0e8));
+  const std::vector<double> target{0.5};
+  world.setDofTargets(r, target);
+  simulate(world, {.seconds = 2.0});
+  EXPECT_NEAR(world.robot(r).dofValues()[0], 0.5, 1e-4);
+  EXPECT_NEAR(world.robot(r).dofVelocities()[0], 0.0, 1e-3);
+}
+
+TEST(Dynamics, PdControllerTorqueIsClampedToMaxEffort) {
+  World world;
+  world.setGravity(Vector3::Zero());
+  const double max_effort = 1.0e6;
+  const int r = addPendulum(world, pendulumModel(100.0, 1.0e9, 1.0e6, max_effort));
+  const std::vector<double> target{1.0};
+  world.setDofTargets(r, target);
+  const double inertia_pivot = 500.0 * (2.0 * 40.0 * 40.0 / 12.0 + 100.0 * 100.0);
+  step(world);
+  // Kp * 1 rad = 1e9 wants far more than maxEffort: the joint accelerates at maxEffort / I.
+  EXPECT_NEAR(world.robot(r).dofVelocities()[0], kDefaultTimeStep * max_effort / inertia_pivot,
+              1e-9);
+}
+
+TEST(Dynamics, RefusesBadTimeSteps) {
+  World world;
+  world.addBody(cube());
+  EXPECT_THROW(step(world, 0.0), Error);
+  EXPECT_THROW(step(world, 1.0), Error);
+  EXPECT_THROW(step(world, std::nan("")), Error);
+  EXPECT_EQ(world.time(), 0.0);
+}
+
+TEST(Dynamics, RefusesANonPositiveMass) {
+  World world;
+  world.addBody(cube(0.0));
+  try {
+    step(world);
+    FAIL() << "a massless dynamic body was stepped";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("cube"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Dynamics, NanVelocityStopsWithTheState) {
+  World world;
+  Body body = cube();
+  body.state.v[0] = std::nan("");
+  world.addBody(body);
+  try {
+    step(world);
+    FAIL() << "a NaN velocity was stepped";
+  } catch (const DynamicsError& error) {
+    EXPECT_NE(std::string(error.what()).find("finite"), std::string::npos) << error.what();
+    EXPECT_NE(error.state().find("\"bodies\""), std::string::npos);
+    EXPECT_NE(error.state().find("cube"), std::string::npos);
+  }
+}
+
+TEST(Dynamics, InterpenetrationAtTheStartIsAnError) {
+  World world;
+  world.addBody(floorSlab());
+  Body body = cube();
+  body.setPose(translation(0, 0, 10));  // 15 mm into the floor
+  world.addBody(body);
+  EXPECT_THROW(step(world), DynamicsError);
+}
+
+TEST(Dynamics, RunawayVelocityIsAnError) {
+  World world;
+  world.setGravity(Vector3::Zero());
+  Body body = cube();
+  body.state.v << 0, 0, 0, 0, 0, 500;  // rad/s
+  world.addBody(body);
+  EXPECT_THROW(step(world), DynamicsError);
+}
+
+}  // namespace
+}  // namespace graspkit
