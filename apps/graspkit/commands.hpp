@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "graspkit/transform.hpp"
 #include "script_flags.hpp"
 
 namespace graspkit {
@@ -174,6 +175,26 @@ struct ViewOptions {
 void addViewCommand(CLI::App& app, ViewOptions& options);
 // Writes one self-contained HTML page (three.js inside): orbit the scene, step through grasps.
 int runView(const ViewOptions& options, std::ostream& out);
+
+struct SimulateOptions {
+  std::filesystem::path world;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  double seconds = 1.0;
+  double dt = 0.0025;
+  std::string gravity;  // "X,Y,Z" or "off"; the world's default when empty
+  bool autograsp = false;
+  std::filesystem::path trajectory;
+  int every = 10;
+  std::filesystem::path out;
+  bool json = false;
+};
+
+void addSimulateCommand(CLI::App& app, SimulateOptions& options);
+// Steps the world; exit 1 when the simulation stopped on a bad state (the report says why).
+int runSimulate(const SimulateOptions& options, std::ostream& out);
+// "X,Y,Z" (mm/s^2) or "off"; throws graspkit::Error naming --gravity otherwise.
+Vector3 parseGravity(const std::string& text);
 
 // The options every command that loads files shares: --root and --generic-robots. With no
 // --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own models,

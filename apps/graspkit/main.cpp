@@ -57,6 +57,7 @@ struct CommandOptions {
   graspkit::cli::RenderOptions render;
   graspkit::cli::ExportOptions exportScene;
   graspkit::cli::ViewOptions view;
+  graspkit::cli::SimulateOptions simulate;
 };
 
 int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
@@ -72,6 +73,7 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("render")) return runRender(o.render, std::cout);
     if (app.got_subcommand("export")) return runExport(o.exportScene, std::cout);
     if (app.got_subcommand("view")) return runView(o.view, std::cout);
+    if (app.got_subcommand("simulate")) return runSimulate(o.simulate, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -124,6 +126,7 @@ int main(int argc, char** argv) {
   graspkit::cli::addRenderCommand(app, options.render);
   graspkit::cli::addExportCommand(app, options.exportScene);
   graspkit::cli::addViewCommand(app, options.view);
+  graspkit::cli::addSimulateCommand(app, options.simulate);
 
   try {
     app.parse(argc, argv);

@@ -65,6 +65,11 @@ class DynamicsError : public Error {
 // a dynamic body with a mass or inertia that is not positive; DynamicsError for a bad state.
 StepReport step(World& world, double dt = kDefaultTimeStep);
 
+// The dynamic autograsp's set-points (GraspIt!'s): every DOF of `robot` targets the limit its
+// default velocity closes towards (a DOF with velocity 0 stays where it is), and its controller's
+// set-point moves there at that velocity. Throws graspkit::Error for a bad robot index.
+void setClosingTargets(World& world, int robot);
+
 // The world's dynamic state as JSON, as DynamicsError carries it.
 std::string dynamicStateJson(const World& world);
 

@@ -120,6 +120,11 @@ class Robot {
   void setDofVelocities(std::span<const double> velocities);
   std::span<const double> dofTargets() const { return dof_targets_; }
   void setDofTargets(std::span<const double> targets);  // an empty span clears them
+  // The controllers' moving set-points: each steps towards its target at the DOF's speed
+  // (|defaultVelocity|, 1 where that is 0) once per step, as GraspIt!'s do. Empty before the
+  // first step, which starts them at the DOF values.
+  std::span<const double> dofReferences() const { return dof_references_; }
+  void setDofReferences(std::span<const double> references);  // an empty span clears them
 
   std::span<const BreakawayState> breakaway() const { return breakaway_; }
   void setBreakaway(int joint, BreakawayState state);
@@ -143,6 +148,7 @@ class Robot {
   std::vector<std::vector<Transform>> link_poses_;
   std::vector<double> dof_velocities_;
   std::vector<double> dof_targets_;
+  std::vector<double> dof_references_;
 };
 
 }  // namespace graspkit

@@ -92,6 +92,7 @@ class World {
   // index, a wrong count or a value that is not finite.
   void setDofVelocities(int robot, std::span<const double> velocities);
   void setDofTargets(int robot, std::span<const double> targets);
+  void setDofReferences(int robot, std::span<const double> references);
 
   World clone() const { return *this; }
 

@@ -26,7 +26,7 @@ using dynamics::VectorX;
 // Share of a penetration below kRestingSeparation removed per step (GraspIt!'s ERP is 0.05; a
 // larger share settles stacks faster, and the push-out speed stays below 10 mm/s).
 constexpr double kErrorReduction = 0.2;
-constexpr double kMaxContactMargin = 20.0;  // mm
+constexpr double kMaxContactMargin = 5.0;  // mm
 // Joint-limit constraints enter the problem this close to a limit (rad or mm), or closer than
 // two steps of the DOF's motion.
 constexpr double kLimitMargin = 1e-3;
@@ -71,12 +71,13 @@ void checkMass(const World& world, const BodyRef& ref) {
 struct MassAndForces {
   MatrixX M;
   VectorX f;
+  VectorX robotWeight;  // the generalized gravity forces of the robots' own parts
 };
 
 MassAndForces massAndForces(const World& world, const GeneralizedCoordinates& coordinates,
                             const VectorX& u) {
   const int n = coordinates.size();
-  MassAndForces out{MatrixX::Zero(n, n), VectorX::Zero(n)};
+  MassAndForces out{MatrixX::Zero(n, n), VectorX::Zero(n), VectorX::Zero(n)};
   for (const BodyRef& ref : coordinates.movingBodies()) {
     checkMass(world, ref);
     const BodyModel& model = bodyModel(world, ref);
@@ -97,20 +98,44 @@ MassAndForces massAndForces(const World& world, const GeneralizedCoordinates& co
     const MatrixX Jw = coordinates.angularJacobian(ref);
     out.M += model.mass * Jv.transpose() * Jv + Jw.transpose() * inertia * Jw;
     out.f += Jv.transpose() * weight;
+    out.robotWeight += Jv.transpose() * weight;
   }
   return out;
 }
 
-// DOF PD controllers and passive joint springs and friction. Stiffness and damping that stay
-// below maxEffort are taken implicitly (added to the mass matrix as h*Kd + h^2*Kp), so GraspIt!'s
-// stiff gains are stable at its 2.5 ms step; a saturated controller pushes with maxEffort.
+// Moves robot `r`'s set-points one step towards their targets and returns their rates. A robot
+// without targets holds its posture, brought into range: a world may load a DOF outside its
+// limits (barrettGlassDyn's Puma elbow), which GraspIt! refuses to step.
+std::vector<double> advanceReferences(World& world, int r, double h) {
+  const Robot& robot = world.robot(r);
+  const auto& dofs = robot.model().dofs;
+  std::vector<double> hold(robot.dofValues().begin(), robot.dofValues().end());
+  for (int d = 0; d < robot.dofCount(); ++d) hold[d] = dofs[d].clamp(hold[d]);
+  if (robot.dofTargets().empty()) world.setDofTargets(r, hold);
+  if (robot.dofReferences().empty()) world.setDofReferences(r, robot.dofValues());
+  std::vector<double> references(robot.dofReferences().begin(), robot.dofReferences().end());
+  std::vector<double> rates(references.size(), 0.0);
+  for (int d = 0; d < robot.dofCount(); ++d) {
+    const double speed = dofs[d].defaultVelocity != 0.0 ? std::abs(dofs[d].defaultVelocity) : 1.0;
+    const double move = std::clamp(robot.dofTargets()[d] - references[d], -speed * h, speed * h);
+    references[d] += move;
+    rates[d] = move / h;
+  }
+  world.setDofReferences(r, references);
+  return rates;
+}
+
+// DOF PD controllers (with gravity compensation) and passive joint springs and friction. Stiffness
+// and damping that stay below maxEffort are taken implicitly (added to the mass matrix as h*Kd +
+// h^2*Kp), so GraspIt!'s stiff gains are stable at its 2.5 ms step; a saturated controller pushes
+// with maxEffort.
 void addJointForces(World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
-                    double h, VectorX& f, VectorX& damping) {
+                    const VectorX& robot_weight, double h, VectorX& f, VectorX& damping) {
   for (int r = 0; r < world.robotCount(); ++r) {
     const Robot& robot = world.robot(r);
     const int offset = coordinates.robotOffset(r);
     if (offset < 0) continue;
-    if (robot.dofTargets().empty()) world.setDofTargets(r, robot.dofValues());
+    const std::vector<double> rates = advanceReferences(world, r, h);
     const RobotModel& model = robot.model();
     for (int d = 0; d < robot.dofCount(); ++d) {
       const Dof& dof = model.dofs[d];
@@ -118,13 +143,16 @@ void addJointForces(World& world, const GeneralizedCoordinates& coordinates, con
       const int i = offset + d;
       const bool revolute =
           dof.joints.empty() || model.joint(dof.joints.front()).type == JointType::Revolute;
-      double error = robot.dofTargets()[d] - robot.dofValues()[d];
+      double error = robot.dofReferences()[d] - robot.dofValues()[d];
       if (revolute) error = wrapAngle(error);
-      const double force = dof.Kp * error - dof.Kd * u[i];
+      // The controller carries the robot's own weight (gravity feed-forward), so an arm holds
+      // its set-points under gravity instead of sagging by weight / Kp.
+      const double feed_forward = -robot_weight[i];
+      const double force = dof.Kp * error + dof.Kd * (rates[d] - u[i]) + feed_forward;
       if (dof.maxEffort > 0.0 && std::abs(force) > dof.maxEffort) {
         f[i] += std::copysign(dof.maxEffort, force);
       } else {
-        f[i] += dof.Kp * error;
+        f[i] += dof.Kp * error + dof.Kd * rates[d] + feed_forward;
         damping[i] += h * dof.Kd + h * h * dof.Kp;
       }
     }
@@ -141,18 +169,23 @@ void addJointForces(World& world, const GeneralizedCoordinates& coordinates, con
   }
 }
 
-// The fastest any point of a moving body goes, for the contact margin.
-double fastestPointSpeed(const World& world, const GeneralizedCoordinates& coordinates,
-                         const VectorX& u) {
-  double fastest = 0.0;
-  for (const BodyRef& ref : coordinates.movingBodies()) {
-    const BodyModel& model = bodyModel(world, ref);
-    const Vector3 centre = bodyPose(world, ref) * model.cog;
-    const double linear = (coordinates.linearJacobian(ref, centre) * u).norm();
-    const double angular = (coordinates.angularJacobian(ref) * u).norm();
-    fastest = std::max(fastest, linear + angular * model.maxRadius);
-  }
-  return fastest;
+// How far apart two bodies' surfaces may close within one step, as a bound: their relative
+// velocity at the midpoint m of their centres of mass plus the relative angular velocity times
+// the farthest any of their points can be from m.
+double closingSpeedBound(const World& world, const GeneralizedCoordinates& coordinates,
+                         const VectorX& u, const BodyRef& a, const BodyRef& b) {
+  const BodyModel& model_a = bodyModel(world, a);
+  const BodyModel& model_b = bodyModel(world, b);
+  const Vector3 centre_a = bodyPose(world, a) * model_a.cog;
+  const Vector3 centre_b = bodyPose(world, b) * model_b.cog;
+  const Vector3 middle = 0.5 * (centre_a + centre_b);
+  const double linear =
+      ((coordinates.linearJacobian(a, middle) - coordinates.linearJacobian(b, middle)) * u).norm();
+  const double angular =
+      ((coordinates.angularJacobian(a) - coordinates.angularJacobian(b)) * u).norm();
+  const double reach =
+      0.5 * (centre_a - centre_b).norm() + std::max(model_a.maxRadius, model_b.maxRadius);
+  return linear + angular * reach;
 }
 
 // The constraints of one step: 3 rows each (normal, tangent, tangent).
@@ -204,40 +237,56 @@ double contactCompliance(const BodyModel& a, const BodyModel& b, double h) {
 
 void addContacts(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
                  double h, const std::string& state, Constraints& constraints) {
-  const double margin = std::min(
-      kMaxContactMargin, kContactThreshold + 2.0 * h * fastestPointSpeed(world, coordinates, u));
   ContactRequest request;
-  request.threshold = margin;
   request.softContacts = false;
+  // Compaction keeps the perimeter of contacts that share a normal, right for two flat faces
+  // but not for a curved body on a face, whose deepest points may lie inside that perimeter.
+  request.compact = false;
   request.graspitDuplicates = false;
-  for (const BodyPair& pair : nearbyPairs(world, margin)) {
+  for (const BodyPair& pair : nearbyPairs(world, kMaxContactMargin)) {
     if (!coordinates.motion(pair.first).moves() && !coordinates.motion(pair.second).moves()) {
       continue;
     }
+    // Contacts within what the step can close, so that nothing tunnels: a held object and the
+    // hand moving together need no more than the contact threshold.
+    request.threshold =
+        std::min(kMaxContactMargin,
+                 kContactThreshold +
+                     2.0 * h * closingSpeedBound(world, coordinates, u, pair.first, pair.second));
     const ContactResult found = findContacts(world, pair.first, pair.second, request);
     if (found.interpenetrating) {
       throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' and '{}' interpenetrate", world.time(),
                                       describe(world, pair.first), describe(world, pair.second)),
                           state);
     }
-    const BodyModel& first = bodyModel(world, pair.first);
-    const BodyModel& second = bodyModel(world, pair.second);
-    const double compliance = contactCompliance(first, second, h);
-    for (const Contact& contact : found.contacts) {
-      const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
-                               coordinates.linearJacobian(pair.second, contact.position2);
-      MatrixX rows(3, coordinates.size());
-      rows.row(0) = contact.frame.col(2).transpose() * relative;
-      rows.row(1) = contact.frame.col(0).transpose() * relative;
-      rows.row(2) = contact.frame.col(1).transpose() * relative;
-      if (rows.isZero()) continue;
-      const double slip = (rows.bottomRows(2) * u).norm();
-      const double mu = frictionCoefficient(first.material, second.material, true, slip);
-      constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
-      constraints.bodies.emplace_back(pair.first, pair.second);
-      ++constraints.contacts;
-    }
+    double md = 1e9;
+    Vector3 mp = Vector3::Zero();
+    for (auto& c : found.contacts)
+      if (c.distance < md) {
+        md = c.distance;
+        mp = c.position1;
+      }
+    fmt::print(stderr, "  {}-{} n={} min={:.4f} at {} {} {}\n", describe(world, pair.first),
+               describe(world, pair.second), found.contacts.size(), md, mp.x(), mp.y(), mp.z());
   }
+  const BodyModel& first = bodyModel(world, pair.first);
+  const BodyModel& second = bodyModel(world, pair.second);
+  const double compliance = contactCompliance(first, second, h);
+  for (const Contact& contact : found.contacts) {
+    const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
+                             coordinates.linearJacobian(pair.second, contact.position2);
+    MatrixX rows(3, coordinates.size());
+    rows.row(0) = contact.frame.col(2).transpose() * relative;
+    rows.row(1) = contact.frame.col(0).transpose() * relative;
+    rows.row(2) = contact.frame.col(1).transpose() * relative;
+    if (rows.isZero()) continue;
+    const double slip = (rows.bottomRows(2) * u).norm();
+    const double mu = frictionCoefficient(first.material, second.material, true, slip);
+    constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
+    constraints.bodies.emplace_back(pair.first, pair.second);
+    ++constraints.contacts;
+  }
+}
 }
 
 void addJointLimits(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
@@ -256,9 +305,9 @@ void addJointLimits(const World& world, const GeneralizedCoordinates& coordinate
         if (room > reach) continue;
         MatrixX rows = MatrixX::Zero(3, coordinates.size());
         rows(0, i) = sign;
-        const double gap = room / h;
-        constraints.limitRows.push_back(
-            constraints.add(rows, gap > 0.0 ? gap : kErrorReduction * gap, 0.0, 0.0));
+        // Out of range (as loaded, or by drift): back in at a bounded speed.
+        const double gap = room > 0.0 ? room / h : std::max(kErrorReduction * room / h, -1.0);
+        constraints.limitRows.push_back(constraints.add(rows, gap, 0.0, 0.0));
         ++constraints.limits;
       }
     }
@@ -351,10 +400,22 @@ std::string dynamicStateJson(const World& world) {
     robots.push_back({{"name", robot.name()},
                       {"dof_values", list(robot.dofValues())},
                       {"dof_velocities", list(robot.dofVelocities())},
-                      {"dof_targets", list(robot.dofTargets())}});
+                      {"dof_targets", list(robot.dofTargets())},
+                      {"dof_references", list(robot.dofReferences())}});
   }
   state["robots"] = robots;
   return state.dump();
+}
+
+void setClosingTargets(World& world, int robot_index) {
+  const Robot& robot = world.robot(robot_index);
+  std::vector<double> targets(robot.dofValues().begin(), robot.dofValues().end());
+  for (int d = 0; d < robot.dofCount(); ++d) {
+    const Dof& dof = robot.model().dofs[d];
+    if (dof.defaultVelocity > 0.0) targets[d] = dof.max;
+    if (dof.defaultVelocity < 0.0) targets[d] = dof.min;
+  }
+  world.setDofTargets(robot_index, targets);
 }
 
 StepReport step(World& world, double h) {
@@ -376,7 +437,7 @@ StepReport step(World& world, double h) {
 
   MassAndForces dynamics = massAndForces(world, coordinates, u);
   VectorX damping = VectorX::Zero(n);
-  addJointForces(world, coordinates, u, h, dynamics.f, damping);
+  addJointForces(world, coordinates, u, dynamics.robotWeight, h, dynamics.f, damping);
   MatrixX effective = dynamics.M;
   effective.diagonal() += damping;
   // Coordinates nothing with mass hangs on (a DOF that only moves massless parts) keep a unit

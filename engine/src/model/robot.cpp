@@ -109,6 +109,15 @@ void Robot::setDofTargets(std::span<const double> targets) {
   dof_targets_.assign(targets.begin(), targets.end());
 }
 
+void Robot::setDofReferences(std::span<const double> references) {
+  if (references.empty()) {
+    dof_references_.clear();
+    return;
+  }
+  checkDofVector(*this, references, "references");
+  dof_references_.assign(references.begin(), references.end());
+}
+
 void Robot::setPose(const Transform& pose) {
   pose_ = pose;
   updateLinkPoses();

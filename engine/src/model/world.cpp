@@ -117,6 +117,10 @@ void World::setDofTargets(int robot, std::span<const double> targets) {
   mutableRobot(robot).setDofTargets(targets);
 }
 
+void World::setDofReferences(int robot, std::span<const double> references) {
+  mutableRobot(robot).setDofReferences(references);
+}
+
 Transform World::mountPose(const Connection& connection) const {
   return robot(connection.parentRobot).chainEndPose(connection.parentChain) * connection.offset;
 }

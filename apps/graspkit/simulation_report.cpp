@@ -1,0 +1,61 @@
+#include "simulation_report.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "graspkit/world.hpp"
+
+namespace graspkit::cli {
+
+using nlohmann::json;
+
+SimulationOutcome runSimulation(World& world, const SimulateRequest& request) {
+  SimulationOutcome outcome;
+  SimulateRequest counted = request;
+  counted.onStep = [&](const World& w, const StepReport& report) {
+    ++outcome.result.steps;
+    outcome.result.last = report;
+    return !request.onStep || request.onStep(w, report);
+  };
+  try {
+    outcome.result = simulate(world, counted);
+    outcome.completed = true;
+    outcome.stopReason = "completed";
+  } catch (const DynamicsError& error) {
+    outcome.result.time = world.time();
+    outcome.stopReason = error.what();
+    outcome.failureState = error.state();
+  }
+  return outcome;
+}
+
+json simulationJson(const World& world, const SimulationOutcome& outcome) {
+  json report = json::parse(dynamicStateJson(world));
+  report["completed"] = outcome.completed;
+  report["stop_reason"] = outcome.stopReason;
+  report["steps"] = outcome.result.steps;
+  report["contacts"] = outcome.result.last.contacts;
+  report["active_contacts"] = outcome.result.last.activeContacts;
+  if (!outcome.completed) report["failure_state"] = json::parse(outcome.failureState);
+  return report;
+}
+
+void printSimulation(const World& world, const SimulationOutcome& outcome, std::ostream& out) {
+  out << fmt::format("t = {:.4f} s after {} steps: {}\n", world.time(), outcome.result.steps,
+                     outcome.stopReason);
+  for (const Body& body : world.bodies()) {
+    if (!body.isDynamic()) continue;
+    const Vector3 p = body.pose.translation();
+    out << fmt::format("  {}: position {:.3f} {:.3f} {:.3f} mm, speed {:.3f} mm/s\n", body.name,
+                       p.x(), p.y(), p.z(), body.state.v.head<3>().norm());
+  }
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const auto values = world.robot(r).dofValues();
+    out << fmt::format("  {}: DOFs {:.4f}\n", world.robot(r).name(),
+                       fmt::join(values.begin(), values.end(), " "));
+  }
+  out << fmt::format("  {} contacts, {} pushing\n", outcome.result.last.contacts,
+                     outcome.result.last.activeContacts);
+}
+
+}  // namespace graspkit::cli
