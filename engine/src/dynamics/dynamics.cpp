@@ -259,34 +259,24 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
                                       describe(world, pair.first), describe(world, pair.second)),
                           state);
     }
-    double md = 1e9;
-    Vector3 mp = Vector3::Zero();
-    for (auto& c : found.contacts)
-      if (c.distance < md) {
-        md = c.distance;
-        mp = c.position1;
-      }
-    fmt::print(stderr, "  {}-{} n={} min={:.4f} at {} {} {}\n", describe(world, pair.first),
-               describe(world, pair.second), found.contacts.size(), md, mp.x(), mp.y(), mp.z());
+    const BodyModel& first = bodyModel(world, pair.first);
+    const BodyModel& second = bodyModel(world, pair.second);
+    const double compliance = contactCompliance(first, second, h);
+    for (const Contact& contact : found.contacts) {
+      const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
+                               coordinates.linearJacobian(pair.second, contact.position2);
+      MatrixX rows(3, coordinates.size());
+      rows.row(0) = contact.frame.col(2).transpose() * relative;
+      rows.row(1) = contact.frame.col(0).transpose() * relative;
+      rows.row(2) = contact.frame.col(1).transpose() * relative;
+      if (rows.isZero()) continue;
+      const double slip = (rows.bottomRows(2) * u).norm();
+      const double mu = frictionCoefficient(first.material, second.material, true, slip);
+      constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
+      constraints.bodies.emplace_back(pair.first, pair.second);
+      ++constraints.contacts;
+    }
   }
-  const BodyModel& first = bodyModel(world, pair.first);
-  const BodyModel& second = bodyModel(world, pair.second);
-  const double compliance = contactCompliance(first, second, h);
-  for (const Contact& contact : found.contacts) {
-    const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
-                             coordinates.linearJacobian(pair.second, contact.position2);
-    MatrixX rows(3, coordinates.size());
-    rows.row(0) = contact.frame.col(2).transpose() * relative;
-    rows.row(1) = contact.frame.col(0).transpose() * relative;
-    rows.row(2) = contact.frame.col(1).transpose() * relative;
-    if (rows.isZero()) continue;
-    const double slip = (rows.bottomRows(2) * u).norm();
-    const double mu = frictionCoefficient(first.material, second.material, true, slip);
-    constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
-    constraints.bodies.emplace_back(pair.first, pair.second);
-    ++constraints.contacts;
-  }
-}
 }
 
 void addJointLimits(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
