@@ -196,6 +196,19 @@ int runSimulate(const SimulateOptions& options, std::ostream& out);
 // "X,Y,Z" (mm/s^2) or "off"; throws graspkit::Error naming --gravity otherwise.
 Vector3 parseGravity(const std::string& text);
 
+struct ValidateOptions {
+  std::filesystem::path input;
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  int grasp = 0;
+  int top = 0;
+  double seconds = 2.0;
+  bool json = false;
+};
+
+void addValidateCommand(CLI::App& app, ValidateOptions& options);
+int runValidate(const ValidateOptions& options, std::ostream& out);
+
 // The options every command that loads files shares: --root and --generic-robots. With no
 // --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own models,
 // <prefix>/share/graspkit/models.

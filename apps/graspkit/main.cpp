@@ -58,6 +58,7 @@ struct CommandOptions {
   graspkit::cli::ExportOptions exportScene;
   graspkit::cli::ViewOptions view;
   graspkit::cli::SimulateOptions simulate;
+  graspkit::cli::ValidateOptions validate;
 };
 
 int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
@@ -74,6 +75,7 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("export")) return runExport(o.exportScene, std::cout);
     if (app.got_subcommand("view")) return runView(o.view, std::cout);
     if (app.got_subcommand("simulate")) return runSimulate(o.simulate, std::cout);
+    if (app.got_subcommand("validate")) return runValidate(o.validate, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -127,6 +129,7 @@ int main(int argc, char** argv) {
   graspkit::cli::addExportCommand(app, options.exportScene);
   graspkit::cli::addViewCommand(app, options.view);
   graspkit::cli::addSimulateCommand(app, options.simulate);
+  graspkit::cli::addValidateCommand(app, options.validate);
 
   try {
     app.parse(argc, argv);

@@ -56,6 +56,31 @@ int setPose(lua_State* L) {
   return 0;
 }
 
+// body:velocity() -> v, w: the centre of mass's velocity (mm/s) and the angular velocity (rad/s),
+// world frame. Zero for bodies that do not move by themselves (obstacles, links).
+int velocity(lua_State* L) {
+  const BoundBody& body = toBody(L, 1);
+  Vector6 v = Vector6::Zero();
+  if (body.ref.kind == BodyRef::Kind::Body) v = body.world->world.bodies()[body.ref.index].state.v;
+  pushVector3(L, v.head<3>());
+  pushVector3(L, v.tail<3>());
+  return 2;
+}
+
+// body:set_velocity(v [, w]): graspable bodies only.
+int setVelocity(lua_State* L) {
+  BoundBody& body = toBody(L, 1);
+  const Vector3 linear = toVector3(L, 2);
+  const Vector3 angular = isNone(L, 3) ? Vector3::Zero() : toVector3(L, 3);
+  if (body.ref.kind != BodyRef::Kind::Body ||
+      !body.world->world.bodies()[body.ref.index].isDynamic()) {
+    throw Error(fmt::format("{} is not a graspable body: only those move by dynamics",
+                            bodyName(body.world->world, body.ref)));
+  }
+  body.world->world.bodies()[body.ref.index].state.v << linear, angular;
+  return 0;
+}
+
 int file(lua_State* L) {
   const BoundBody& body = toBody(L, 1);
   lua_pushstring(L, bodyModel(body.world->world, body.ref).file.c_str());
@@ -263,6 +288,8 @@ void registerBodyClass(lua_State* L) {
       {"kind", guarded<kind>},
       {"pose", guarded<pose>},
       {"set_pose", guarded<setPose>},
+      {"velocity", guarded<velocity>},
+      {"set_velocity", guarded<setVelocity>},
       {"file", guarded<file>},
       {"material", guarded<material>},
       {"mass", guarded<mass>},

@@ -5,6 +5,7 @@
 
 #include "bound_objects.hpp"
 #include "graspkit/autograsp.hpp"
+#include "graspkit/dynamics.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/inverse_kinematics.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
@@ -224,10 +225,58 @@ void pushMotion(lua_State* L, const WorldHandle& world, const AutoGraspResult& r
   lua_setfield(L, -2, "ended");
 }
 
-// hand:autograsp([{speed = 1, stop_at_contact = false, max_steps = 500}])
+// hand:autograsp{dynamic = true, seconds = 2}: the hand's DOF controllers drive every DOF
+// towards the limit it closes to, and the world is simulated until the DOFs have stopped (all
+// slower than 1e-3 for 0.1 s) or `seconds` have passed. Returns {time, steps, settled}.
+int dynamicAutograsp(lua_State* L, BoundRobot& robot, double seconds) {
+  World& world = robot.world->world;
+  setClosingTargets(world, robot.index);
+  int still_steps = 0, steps = 0;
+  const int needed = static_cast<int>(std::ceil(0.1 / kDefaultTimeStep));
+  SimulateRequest request{.seconds = seconds};
+  request.onStep = [&](const World& w, const StepReport&) {
+    ++steps;
+    double fastest = 0.0;
+    for (double v : w.robot(robot.index).dofVelocities()) fastest = std::max(fastest, std::abs(v));
+    still_steps = fastest < 1e-3 ? still_steps + 1 : 0;
+    return still_steps < needed;
+  };
+  const SimulateResult result = simulate(world, request);
+  lua_createtable(L, 0, 3);
+  lua_pushnumber(L, result.time);
+  lua_setfield(L, -2, "time");
+  lua_pushinteger(L, steps);
+  lua_setfield(L, -2, "steps");
+  lua_pushboolean(L, result.stoppedEarly);
+  lua_setfield(L, -2, "settled");
+  return 1;
+}
+
+// robot:set_dof_targets{...}: the DOF controllers' set-points (rad or mm) for dynamics.
+int setDofTargets(lua_State* L) {
+  BoundRobot& robot = toRobot(L, 1);
+  robot.world->world.setDofTargets(robot.index, toNumberList(L, 2));
+  return 0;
+}
+
+int dofTargets(lua_State* L) {
+  pushNumberList(L, robotOf(toRobot(L, 1)).dofTargets());
+  return 1;
+}
+
+int dofVelocities(lua_State* L) {
+  pushNumberList(L, robotOf(toRobot(L, 1)).dofVelocities());
+  return 1;
+}
+
+// hand:autograsp([{speed = 1, stop_at_contact = false, max_steps = 500}]), GraspIt!'s static
+// autograsp; with dynamic = true, the dynamic one above.
 int autograsp(lua_State* L) {
   BoundRobot& robot = toRobot(L, 1);
-  const OptionsTable options(L, 2, {"speed", "stop_at_contact", "max_steps"});
+  const OptionsTable options(L, 2, {"speed", "stop_at_contact", "max_steps", "dynamic", "seconds"});
+  if (options.boolean("dynamic", false)) {
+    return dynamicAutograsp(L, robot, options.number("seconds", 2.0));
+  }
   AutoGraspOptions request;
   request.speedFactor = options.number("speed", request.speedFactor);
   request.stopAtContact = options.boolean("stop_at_contact", request.stopAtContact);
@@ -477,6 +526,9 @@ void registerRobotClass(lua_State* L) {
       {"links", guarded<links>},
       {"inverse_kinematics", guarded<inverseKinematics>},
       {"autograsp", guarded<autograsp>},
+      {"set_dof_targets", guarded<setDofTargets>},
+      {"dof_targets", guarded<dofTargets>},
+      {"dof_velocities", guarded<dofVelocities>},
       {"open", guarded<open>},
       {"approach_to_contact", guarded<approachToContact>},
       {"move_dofs_to_contacts", guarded<moveDofsToContacts>},

@@ -9,6 +9,7 @@
 #include "graspkit/collision.hpp"
 #include "graspkit/collision_filter.hpp"
 #include "graspkit/contact_search.hpp"
+#include "graspkit/dynamics.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/grasp.hpp"
 #include "graspkit/io/body_file.hpp"
@@ -107,6 +108,58 @@ int render(lua_State* L) {
     request.contacts = analyzeGrasp(world.world, *subject.hand, *subject.object).contacts;
   writePng(graspkit::render(world.world, request), file);
   lua_pushstring(L, file.c_str());
+  return 1;
+}
+
+void pushStepReport(lua_State* L, const StepReport& report) {
+  lua_createtable(L, 0, 4);
+  lua_pushnumber(L, report.time);
+  lua_setfield(L, -2, "time");
+  lua_pushinteger(L, report.contacts);
+  lua_setfield(L, -2, "contacts");
+  lua_pushinteger(L, report.activeContacts);
+  lua_setfield(L, -2, "active_contacts");
+  lua_pushinteger(L, report.jointLimits);
+  lua_setfield(L, -2, "joint_limits");
+}
+
+// world:step([dt]) -> {time, contacts, active_contacts, joint_limits}
+int stepWorld(lua_State* L) {
+  ScriptWorld& world = toWorld(L, 1);
+  const double dt = isNone(L, 2) ? kDefaultTimeStep : toNumber(L, 2);
+  pushStepReport(L, step(world.world, dt));
+  return 1;
+}
+
+// world:simulate{seconds = 1, dt = 0.0025} -> the last step's report, with its step count
+int simulateWorld(lua_State* L) {
+  ScriptWorld& world = toWorld(L, 1);
+  const OptionsTable options(L, 2, {"seconds", "dt"});
+  SimulateRequest request;
+  request.seconds = options.number("seconds", request.seconds);
+  request.dt = options.number("dt", request.dt);
+  const SimulateResult result = simulate(world.world, request);
+  pushStepReport(L, result.last);
+  lua_pushinteger(L, result.steps);
+  lua_setfield(L, -2, "steps");
+  lua_pushnumber(L, result.time);
+  lua_setfield(L, -2, "time");
+  return 1;
+}
+
+// world:set_gravity{x, y, z} (mm/s^2; {0, 0, 0} is GraspIt!'s world without gravity)
+int setGravity(lua_State* L) {
+  toWorld(L, 1).world.setGravity(toVector3(L, 2));
+  return 0;
+}
+
+int gravity(lua_State* L) {
+  pushVector3(L, toWorld(L, 1).world.gravity());
+  return 1;
+}
+
+int worldTime(lua_State* L) {
+  lua_pushnumber(L, toWorld(L, 1).world.time());
   return 1;
 }
 
@@ -380,6 +433,11 @@ void openWorldFunctions(lua_State* L) {
       {"save", guarded<save>},
       {"clone", guarded<clone>},
       {"render", guarded<render>},
+      {"step", guarded<stepWorld>},
+      {"simulate", guarded<simulateWorld>},
+      {"set_gravity", guarded<setGravity>},
+      {"gravity", guarded<gravity>},
+      {"time", guarded<worldTime>},
       {"file", guarded<file>},
       {"bodies", guarded<bodies>},
       {"body", guarded<body>},

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
 
 #include "dynamics/friction_contact_solver.hpp"
 #include "dynamics/generalized_coordinates.hpp"
@@ -103,39 +105,50 @@ MassAndForces massAndForces(const World& world, const GeneralizedCoordinates& co
   return out;
 }
 
-// Moves robot `r`'s set-points one step towards their targets and returns their rates. A robot
-// without targets holds its posture, brought into range: a world may load a DOF outside its
-// limits (barrettGlassDyn's Puma elbow), which GraspIt! refuses to step.
-std::vector<double> advanceReferences(World& world, int r, double h) {
-  const Robot& robot = world.robot(r);
+// A robot's controller set-points after this step: each moves towards its target at the DOF's
+// speed. A robot without targets holds its posture, brought into range: a world may load a DOF
+// outside its limits (barrettGlassDyn's Puma elbow), which GraspIt! refuses to step.
+struct SetPoints {
+  std::vector<double> targets;
+  std::vector<double> references;
+  std::vector<double> rates;
+};
+
+SetPoints nextSetPoints(const Robot& robot, double h) {
   const auto& dofs = robot.model().dofs;
-  std::vector<double> hold(robot.dofValues().begin(), robot.dofValues().end());
-  for (int d = 0; d < robot.dofCount(); ++d) hold[d] = dofs[d].clamp(hold[d]);
-  if (robot.dofTargets().empty()) world.setDofTargets(r, hold);
-  if (robot.dofReferences().empty()) world.setDofReferences(r, robot.dofValues());
-  std::vector<double> references(robot.dofReferences().begin(), robot.dofReferences().end());
-  std::vector<double> rates(references.size(), 0.0);
+  SetPoints next;
+  next.targets.assign(robot.dofTargets().begin(), robot.dofTargets().end());
+  if (next.targets.empty()) {
+    for (int d = 0; d < robot.dofCount(); ++d) {
+      next.targets.push_back(dofs[d].clamp(robot.dofValues()[d]));
+    }
+  }
+  const auto start = robot.dofReferences().empty() ? robot.dofValues() : robot.dofReferences();
+  next.references.assign(start.begin(), start.end());
+  next.rates.assign(next.references.size(), 0.0);
   for (int d = 0; d < robot.dofCount(); ++d) {
     const double speed = dofs[d].defaultVelocity != 0.0 ? std::abs(dofs[d].defaultVelocity) : 1.0;
-    const double move = std::clamp(robot.dofTargets()[d] - references[d], -speed * h, speed * h);
-    references[d] += move;
-    rates[d] = move / h;
+    const double move = std::clamp(next.targets[d] - next.references[d], -speed * h, speed * h);
+    next.references[d] += move;
+    next.rates[d] = move / h;
   }
-  world.setDofReferences(r, references);
-  return rates;
+  return next;
 }
 
 // DOF PD controllers (with gravity compensation) and passive joint springs and friction. Stiffness
 // and damping that stay below maxEffort are taken implicitly (added to the mass matrix as h*Kd +
 // h^2*Kp), so GraspIt!'s stiff gains are stable at its 2.5 ms step; a saturated controller pushes
 // with maxEffort.
-void addJointForces(World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
-                    const VectorX& robot_weight, double h, VectorX& f, VectorX& damping) {
+void addJointForces(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
+                    const VectorX& robot_weight, double h, std::vector<SetPoints>& set_points,
+                    VectorX& f, VectorX& damping) {
+  set_points.assign(world.robotCount(), {});
   for (int r = 0; r < world.robotCount(); ++r) {
     const Robot& robot = world.robot(r);
     const int offset = coordinates.robotOffset(r);
     if (offset < 0) continue;
-    const std::vector<double> rates = advanceReferences(world, r, h);
+    set_points[r] = nextSetPoints(robot, h);
+    const std::vector<double>& rates = set_points[r].rates;
     const RobotModel& model = robot.model();
     for (int d = 0; d < robot.dofCount(); ++d) {
       const Dof& dof = model.dofs[d];
@@ -143,7 +156,7 @@ void addJointForces(World& world, const GeneralizedCoordinates& coordinates, con
       const int i = offset + d;
       const bool revolute =
           dof.joints.empty() || model.joint(dof.joints.front()).type == JointType::Revolute;
-      double error = robot.dofReferences()[d] - robot.dofValues()[d];
+      double error = set_points[r].references[d] - robot.dofValues()[d];
       if (revolute) error = wrapAngle(error);
       // The controller carries the robot's own weight (gravity feed-forward), so an arm holds
       // its set-points under gravity instead of sagging by weight / Kp.
@@ -158,6 +171,8 @@ void addJointForces(World& world, const GeneralizedCoordinates& coordinates, con
     }
     for (int j = 0; j < model.jointCount(); ++j) {
       const Joint& joint = model.joint(j);
+      if (robot.breakaway()[j].engaged)
+        continue;  // held by its clutch, see generalized_coordinates
       const int i = offset + joint.dof;
       const double velocity = joint.ratio * u[i];
       const double spring = -joint.springStiffness * (robot.jointValues()[j] - joint.restValue);
@@ -236,7 +251,7 @@ double contactCompliance(const BodyModel& a, const BodyModel& b, double h) {
 }
 
 void addContacts(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
-                 double h, const std::string& state, Constraints& constraints) {
+                 const VectorX& free_velocity, double h, Constraints& constraints) {
   ContactRequest request;
   request.softContacts = false;
   // Compaction keeps the perimeter of contacts that share a normal, right for two flat faces
@@ -247,17 +262,21 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
     if (!coordinates.motion(pair.first).moves() && !coordinates.motion(pair.second).moves()) {
       continue;
     }
-    // Contacts within what the step can close, so that nothing tunnels: a held object and the
-    // hand moving together need no more than the contact threshold.
-    request.threshold =
-        std::min(kMaxContactMargin,
-                 kContactThreshold +
-                     2.0 * h * closingSpeedBound(world, coordinates, u, pair.first, pair.second));
+    // Contacts within what the step can close, before or after its free motion (a controller
+    // can start a finger from rest), so that nothing tunnels: a held object and the hand moving
+    // together need no more than the contact threshold.
+    request.threshold = std::min(
+        kMaxContactMargin,
+        kContactThreshold +
+            2.0 * h *
+                std::max(
+                    closingSpeedBound(world, coordinates, u, pair.first, pair.second),
+                    closingSpeedBound(world, coordinates, free_velocity, pair.first, pair.second)));
     const ContactResult found = findContacts(world, pair.first, pair.second, request);
     if (found.interpenetrating) {
       throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' and '{}' interpenetrate", world.time(),
                                       describe(world, pair.first), describe(world, pair.second)),
-                          state);
+                          dynamicStateJson(world));
     }
     const BodyModel& first = bodyModel(world, pair.first);
     const BodyModel& second = bodyModel(world, pair.second);
@@ -305,10 +324,11 @@ void addJointLimits(const World& world, const GeneralizedCoordinates& coordinate
 }
 
 void checkVelocities(const World& world, const GeneralizedCoordinates& coordinates,
-                     const VectorX& u, const std::string& state) {
+                     const VectorX& u) {
   if (!u.allFinite()) {
     throw DynamicsError(
-        fmt::format("at t = {:.4f} s, a velocity is not a finite number", world.time()), state);
+        fmt::format("at t = {:.4f} s, a velocity is not a finite number", world.time()),
+        dynamicStateJson(world));
   }
   for (const BodyRef& ref : coordinates.movingBodies()) {
     const BodyModel& model = bodyModel(world, ref);
@@ -319,7 +339,7 @@ void checkVelocities(const World& world, const GeneralizedCoordinates& coordinat
       throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' runs away at {:.0f} mm/s and {:.1f} "
                                       "rad/s: the simulation is unstable",
                                       world.time(), describe(world, ref), linear, angular),
-                          state);
+                          dynamicStateJson(world));
     }
   }
 }
@@ -408,12 +428,14 @@ void setClosingTargets(World& world, int robot_index) {
   world.setDofTargets(robot_index, targets);
 }
 
-StepReport step(World& world, double h) {
-  if (!(h > 0.0 && h <= kMaxTimeStep)) {
-    throw Error(fmt::format("time step {} s is outside (0, {}] s", h, kMaxTimeStep));
-  }
-  if (!world.gravity().allFinite()) throw Error("gravity is not a finite vector");
-  const std::string state = dynamicStateJson(world);
+namespace {
+
+// One attempt at a step of h. Returns nullopt when the new poses make two bodies that were in
+// contact interpenetrate (the linearised contacts let an edge or a corner through); the world is
+// then unchanged and the caller splits the step.
+std::optional<StepReport> tryStep(World& world, double h) {
+  // Nothing below changes the world until the step has succeeded, so an error's state (taken
+  // when it is thrown) is the state before the step.
   const GeneralizedCoordinates coordinates(world);
   const int n = coordinates.size();
   StepReport report;
@@ -423,11 +445,12 @@ StepReport step(World& world, double h) {
     return report;
   }
   const VectorX u = currentVelocities(world, coordinates);
-  checkVelocities(world, coordinates, u, state);
+  checkVelocities(world, coordinates, u);
 
   MassAndForces dynamics = massAndForces(world, coordinates, u);
   VectorX damping = VectorX::Zero(n);
-  addJointForces(world, coordinates, u, dynamics.robotWeight, h, dynamics.f, damping);
+  std::vector<SetPoints> set_points;
+  addJointForces(world, coordinates, u, dynamics.robotWeight, h, set_points, dynamics.f, damping);
   MatrixX effective = dynamics.M;
   effective.diagonal() += damping;
   // Coordinates nothing with mass hangs on (a DOF that only moves massless parts) keep a unit
@@ -440,7 +463,7 @@ StepReport step(World& world, double h) {
 
   Constraints constraints;
   constraints.reserve(n);
-  addContacts(world, coordinates, u, h, state, constraints);
+  addContacts(world, coordinates, u, free_velocity, h, constraints);
   addJointLimits(world, coordinates, u, h, constraints);
   report.contacts = constraints.contacts;
   report.jointLimits = constraints.limits;
@@ -466,7 +489,7 @@ StepReport step(World& world, double h) {
                                       "residual {:.3g}",
                                       world.time(), constraints.contacts, constraints.limits,
                                       solution.solver, solution.error),
-                          state);
+                          dynamicStateJson(world));
     }
     velocity += MinvGt * solution.reaction;
     for (int c = 0; c < constraints.contacts; ++c) {
@@ -477,11 +500,50 @@ StepReport step(World& world, double h) {
       }
     }
   }
-  checkVelocities(world, coordinates, velocity, state);
-  integrate(world, coordinates, velocity, h, pushed);
-  world.setTime(world.time() + h);
+  checkVelocities(world, coordinates, velocity);
+  World next = world.clone();
+  for (int r = 0; r < next.robotCount(); ++r) {
+    if (set_points[r].targets.empty()) continue;
+    next.setDofTargets(r, set_points[r].targets);
+    next.setDofReferences(r, set_points[r].references);
+  }
+  integrate(next, coordinates, velocity, h, pushed);
+  // Only bodies that had contacts can have reached each other within the step (the contact
+  // margins bound the closing speed).
+  std::set<std::pair<BodyRef, BodyRef>> touching(constraints.bodies.begin(),
+                                                 constraints.bodies.end());
+  for (const auto& [a, b] : touching) {
+    if (collide(next, a, b)) return std::nullopt;
+  }
+  next.setTime(world.time() + h);
+  world = std::move(next);
   report.time = world.time();
   return report;
+}
+
+// GraspIt!'s remedy for a step that ends in collision: bisect it.
+constexpr int kMaxBisections = 6;
+
+StepReport bisectingStep(World& world, double h, int depth) {
+  if (std::optional<StepReport> report = tryStep(world, h)) return *report;
+  if (depth == kMaxBisections) {
+    throw DynamicsError(fmt::format("at t = {:.4f} s, bodies in contact interpenetrate even with "
+                                    "the step cut to {:.3g} s",
+                                    world.time(), h),
+                        dynamicStateJson(world));
+  }
+  bisectingStep(world, h / 2.0, depth + 1);
+  return bisectingStep(world, h / 2.0, depth + 1);
+}
+
+}  // namespace
+
+StepReport step(World& world, double h) {
+  if (!(h > 0.0 && h <= kMaxTimeStep)) {
+    throw Error(fmt::format("time step {} s is outside (0, {}] s", h, kMaxTimeStep));
+  }
+  if (!world.gravity().allFinite()) throw Error("gravity is not a finite vector");
+  return bisectingStep(world, h, 0);
 }
 
 SimulateResult simulate(World& world, const SimulateRequest& request) {

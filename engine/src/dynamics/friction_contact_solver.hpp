@@ -18,8 +18,10 @@ struct FrictionContactSolution {
   const char* solver = "";
 };
 
-// Nonsmooth Gauss-Seidel first (fast and robust on the small, well-conditioned problems of
-// grasping); where it does not converge, Alart-Curnier's nonsmooth Newton method.
+// Siconos' nonsmooth Gauss-Seidel (NSGS) with its default one-contact Newton solver. Measured
+// here on barrettGlassDyn and the mug grasps: it converges in tens to hundreds of sweeps, while
+// the global nonsmooth Newton (NSN-AC) fails to factorise the rank-deficient Delassus matrices
+// of rigid bodies with more than 3 contacts.
 FrictionContactSolution solveFrictionContact(const MatrixX& W, const VectorX& q, const VectorX& mu,
                                              double tolerance = 1e-10);
 

@@ -79,6 +79,9 @@ std::vector<JointAxis> GeneralizedCoordinates::chainAxes(const World& world, int
   const std::vector<Transform> frames = jointFrames(chain, chain_base, values);
   for (int j = 0; j <= last_joint && j < static_cast<int>(chain.joints.size()); ++j) {
     const Joint& joint = chain.joints[j];
+    // A joint whose breakaway clutch has engaged stays where it stopped: it no longer follows
+    // its DOF, so it carries the links beyond it as a fixed joint would.
+    if (robot.breakaway()[chain.firstJoint + j].engaged) continue;
     const Transform& before = j == 0 ? chain_base : frames[j - 1];
     JointAxis axis;
     axis.coordinate = robot_offset_[robot_index] + joint.dof;

@@ -1,0 +1,102 @@
+#include "graspkit/grasp_validation.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "graspkit/world.hpp"
+
+namespace graspkit {
+
+namespace {
+
+void checkRequest(const ValidationRequest& request) {
+  const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
+  if (!positive(request.seconds) || !positive(request.maxSlip) || !positive(request.maxTurn) ||
+      !positive(request.gravity) ||
+      !(std::isfinite(request.settleSeconds) && request.settleSeconds >= 0.0)) {
+    throw Error("grasp validation: seconds, slip, turn and gravity must be positive numbers");
+  }
+  if (!(request.dt > 0.0 && request.dt <= kMaxTimeStep)) {
+    throw Error(fmt::format("grasp validation: time step {} s is outside (0, {}] s", request.dt,
+                            kMaxTimeStep));
+  }
+}
+
+// The world with only its robots and the object (index 0 afterwards), everything at rest, the
+// hand squeezing towards its closing limits.
+World validationWorld(const World& world, int robot, int object) {
+  World base = world.clone();
+  for (int b = static_cast<int>(base.bodies().size()) - 1; b >= 0; --b) {
+    if (b != object) base.removeBody(b);
+  }
+  base.bodies()[0].state.v.setZero();
+  for (int r = 0; r < base.robotCount(); ++r) {
+    const std::vector<double> rest(base.robot(r).dofCount(), 0.0);
+    base.setDofVelocities(r, rest);
+    base.setDofReferences(r, {});
+    base.setDofTargets(r, {});
+  }
+  setClosingTargets(base, robot);
+  base.setTime(0.0);
+  return base;
+}
+
+// The object's pose in the palm's frame.
+Transform heldPose(const World& world, int robot) {
+  return world.robot(robot).pose().inverse() * world.bodies()[0].pose;
+}
+
+}  // namespace
+
+ValidationResult validateGrasp(const World& world, int robot, int object,
+                               const ValidationRequest& request) {
+  checkRequest(request);
+  world.robot(robot);  // throws for a bad index
+  if (object < 0 || object >= static_cast<int>(world.bodies().size()) ||
+      !world.bodies()[object].isDynamic()) {
+    throw Error(
+        fmt::format("grasp validation: body {} is not a graspable body of the world", object));
+  }
+  ValidationResult result;
+  const Vector3 axes[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
+                           -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
+  World base = validationWorld(world, robot, object);
+  std::string settle_failure;
+  try {
+    base.setGravity(Vector3::Zero());
+    simulate(base, {.seconds = request.settleSeconds, .dt = request.dt});
+  } catch (const DynamicsError& error) {
+    settle_failure = error.what();
+  }
+  const Transform held = heldPose(base, robot);
+  for (int k = 0; k < 6; ++k) {
+    DirectionResult& direction = result.directions[k];
+    direction.direction = axes[k];
+    if (!settle_failure.empty()) {
+      direction.failure = settle_failure;
+      continue;
+    }
+    World trial = base.clone();
+    trial.setGravity(request.gravity * axes[k]);
+    const auto measure = [&](const World& w, const StepReport&) {
+      const Transform now = heldPose(w, robot);
+      direction.slip = std::max(direction.slip, (now.translation() - held.translation()).norm());
+      direction.turn = std::max(
+          direction.turn, Quaternion(now.linear()).angularDistance(Quaternion(held.linear())));
+      // Once it has let go, the rest of the run cannot bring it back within the limits.
+      return direction.slip <= request.maxSlip && direction.turn <= request.maxTurn;
+    };
+    try {
+      simulate(trial, {.seconds = request.seconds, .dt = request.dt, .onStep = measure});
+      direction.held = direction.slip <= request.maxSlip && direction.turn <= request.maxTurn;
+    } catch (const DynamicsError& error) {
+      direction.failure = error.what();
+    }
+    if (direction.held) ++result.directionsHeld;
+  }
+  result.held = result.directionsHeld == 6;
+  return result;
+}
+
+}  // namespace graspkit
