@@ -40,6 +40,16 @@ struct WorldRobot {
   std::filesystem::path filename;  // as written in the world file
 };
 
+// A contact impulse of the last time step, kept so that the next step's solver starts from it
+// (a warm start): the pair, the contact point in body1's frame, and the impulse on body1 in the
+// world frame (g*mm/s).
+struct ContactImpulse {
+  BodyRef body1;
+  BodyRef body2;
+  Vector3 localPoint = Vector3::Zero();
+  Vector3 impulse = Vector3::Zero();
+};
+
 class World {
  public:
   std::vector<Body>& bodies() { return bodies_; }
@@ -88,6 +98,10 @@ class World {
   void setGravity(const Vector3& gravity) { gravity_ = gravity; }
   double time() const { return time_; }
   void setTime(double time) { time_ = time; }
+  const std::vector<ContactImpulse>& lastImpulses() const { return last_impulses_; }
+  void setLastImpulses(std::vector<ContactImpulse> impulses) {
+    last_impulses_ = std::move(impulses);
+  }
   // A robot's DOF velocities and PD set-points (see Robot). Throw graspkit::Error for a bad
   // index, a wrong count or a value that is not finite.
   void setDofVelocities(int robot, std::span<const double> velocities);
@@ -110,6 +124,7 @@ class World {
   CollisionFilter collision_filter_;
   Vector3 gravity_ = Vector3(0.0, 0.0, -9810.0);
   double time_ = 0.0;
+  std::vector<ContactImpulse> last_impulses_;
 };
 
 }  // namespace graspkit

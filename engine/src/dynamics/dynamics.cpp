@@ -211,6 +211,8 @@ struct Constraints {
   VectorX compliance;          // per constraint, added to W's normal diagonal
   std::vector<int> limitRows;  // first row of each joint-limit constraint
   std::vector<std::pair<BodyRef, BodyRef>> bodies;  // per contact constraint
+  std::vector<Vector3> localPoints;                 // per contact: its point in body1's frame
+  std::vector<Matrix3> frames;                      // per contact: columns t1, t2, normal
   int contacts = 0;
   int limits = 0;
 
@@ -281,6 +283,7 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
     const BodyModel& first = bodyModel(world, pair.first);
     const BodyModel& second = bodyModel(world, pair.second);
     const double compliance = contactCompliance(first, second, h);
+    const Transform first_inverse = bodyPose(world, pair.first).inverse();
     for (const Contact& contact : found.contacts) {
       const MatrixX relative = coordinates.linearJacobian(pair.first, contact.position1) -
                                coordinates.linearJacobian(pair.second, contact.position2);
@@ -293,9 +296,54 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
       const double mu = frictionCoefficient(first.material, second.material, true, slip);
       constraints.add(rows, gapOffset(contact.distance, h), mu, compliance);
       constraints.bodies.emplace_back(pair.first, pair.second);
+      constraints.localPoints.push_back(first_inverse * contact.position1);
+      constraints.frames.push_back(contact.frame);
       ++constraints.contacts;
     }
   }
+}
+
+// Where a contact was within this of one of the last step's on the same pair (body1's frame),
+// it starts from that one's impulse.
+constexpr double kWarmStartReach = 1.0;  // mm
+
+VectorX warmStart(const World& world, const Constraints& constraints) {
+  VectorX start = VectorX::Zero(constraints.G.rows());
+  const std::vector<ContactImpulse>& last = world.lastImpulses();
+  for (int c = 0; c < constraints.contacts; ++c) {
+    const ContactImpulse* nearest = nullptr;
+    double best = kWarmStartReach;
+    for (const ContactImpulse& previous : last) {
+      if (!(previous.body1 == constraints.bodies[c].first) ||
+          !(previous.body2 == constraints.bodies[c].second)) {
+        continue;
+      }
+      const double gap = (previous.localPoint - constraints.localPoints[c]).norm();
+      if (gap < best) {
+        best = gap;
+        nearest = &previous;
+      }
+    }
+    if (!nearest) continue;
+    const Matrix3& frame = constraints.frames[c];
+    start.segment<3>(3 * c) << frame.col(2).dot(nearest->impulse),
+        frame.col(0).dot(nearest->impulse), frame.col(1).dot(nearest->impulse);
+  }
+  return start;
+}
+
+std::vector<ContactImpulse> contactImpulses(const Constraints& constraints,
+                                            const VectorX& reaction) {
+  std::vector<ContactImpulse> impulses;
+  for (int c = 0; c < constraints.contacts; ++c) {
+    const Matrix3& frame = constraints.frames[c];
+    const Vector3 r = reaction.segment<3>(3 * c);
+    if (r.isZero()) continue;
+    impulses.push_back({constraints.bodies[c].first, constraints.bodies[c].second,
+                        constraints.localPoints[c],
+                        r[0] * frame.col(2) + r[1] * frame.col(0) + r[2] * frame.col(1)});
+  }
+  return impulses;
 }
 
 void addJointLimits(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
@@ -433,7 +481,7 @@ namespace {
 // One attempt at a step of h. Returns nullopt when the new poses make two bodies that were in
 // contact interpenetrate (the linearised contacts let an edge or a corner through); the world is
 // then unchanged and the caller splits the step.
-std::optional<StepReport> tryStep(World& world, double h) {
+std::optional<StepReport> tryStep(World& world, double h, std::pair<BodyRef, BodyRef>& offending) {
   // Nothing below changes the world until the step has succeeded, so an error's state (taken
   // when it is thrown) is the state before the step.
   const GeneralizedCoordinates coordinates(world);
@@ -469,6 +517,7 @@ std::optional<StepReport> tryStep(World& world, double h) {
   report.jointLimits = constraints.limits;
 
   VectorX velocity = free_velocity;
+  std::vector<ContactImpulse> impulses;
   std::vector<bool> pushed(world.bodies().size(), false);
   if (constraints.G.rows() > 0) {
     const MatrixX MinvGt = solver.solve(constraints.G.transpose());
@@ -480,7 +529,7 @@ std::optional<StepReport> tryStep(World& world, double h) {
     }
     const VectorX q = constraints.G * free_velocity + constraints.offset;
     const dynamics::FrictionContactSolution solution =
-        dynamics::solveFrictionContact(W, q, constraints.mu);
+        dynamics::solveFrictionContact(W, q, constraints.mu, warmStart(world, constraints));
     report.solverIterations = solution.iterations;
     report.solverError = solution.error;
     if (!solution.solved) {
@@ -492,6 +541,7 @@ std::optional<StepReport> tryStep(World& world, double h) {
                           dynamicStateJson(world));
     }
     velocity += MinvGt * solution.reaction;
+    impulses = contactImpulses(constraints, solution.reaction);
     for (int c = 0; c < constraints.contacts; ++c) {
       if (solution.reaction[3 * c] <= 0.0) continue;
       ++report.activeContacts;
@@ -508,12 +558,18 @@ std::optional<StepReport> tryStep(World& world, double h) {
     next.setDofReferences(r, set_points[r].references);
   }
   integrate(next, coordinates, velocity, h, pushed);
+  next.setLastImpulses(std::move(impulses));
   // Only bodies that had contacts can have reached each other within the step (the contact
   // margins bound the closing speed).
   std::set<std::pair<BodyRef, BodyRef>> touching(constraints.bodies.begin(),
                                                  constraints.bodies.end());
+  // A pair that already touched as the step began (FCL counts touching surfaces as colliding) is
+  // not the step's doing.
   for (const auto& [a, b] : touching) {
-    if (collide(next, a, b)) return std::nullopt;
+    if (collide(next, a, b) && !collide(world, a, b)) {
+      offending = {a, b};
+      return std::nullopt;
+    }
   }
   next.setTime(world.time() + h);
   world = std::move(next);
@@ -525,11 +581,13 @@ std::optional<StepReport> tryStep(World& world, double h) {
 constexpr int kMaxBisections = 6;
 
 StepReport bisectingStep(World& world, double h, int depth) {
-  if (std::optional<StepReport> report = tryStep(world, h)) return *report;
+  std::pair<BodyRef, BodyRef> offending;
+  if (std::optional<StepReport> report = tryStep(world, h, offending)) return *report;
   if (depth == kMaxBisections) {
-    throw DynamicsError(fmt::format("at t = {:.4f} s, bodies in contact interpenetrate even with "
-                                    "the step cut to {:.3g} s",
-                                    world.time(), h),
+    throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' and '{}' interpenetrate even with the "
+                                    "step cut to {:.3g} s",
+                                    world.time(), describe(world, offending.first),
+                                    describe(world, offending.second), h),
                         dynamicStateJson(world));
   }
   bisectingStep(world, h / 2.0, depth + 1);

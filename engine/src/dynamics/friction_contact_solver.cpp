@@ -22,7 +22,7 @@ struct OptionsDeleter {
 
 // Runs one Siconos solver on the problem; the problem's arrays stay owned by the caller.
 bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, VectorX& q,
-               VectorX& mu, FrictionContactSolution& solution) {
+               VectorX& mu, const VectorX& start, FrictionContactSolution& solution) {
   const int rows = static_cast<int>(q.size());
   NumericsMatrix* matrix = NM_create_from_data(NM_DENSE, rows, rows, W.data());
   FrictionContactProblem problem{};
@@ -34,7 +34,11 @@ bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, 
   std::unique_ptr<SolverOptions, OptionsDeleter> options(solver_options_create(solver_id));
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
   options->dparam[SICONOS_DPARAM_TOL] = tolerance;
-  solution.reaction = VectorX::Zero(rows);
+  // The residual from incremental updates, the full one only to confirm convergence: the full
+  // one each sweep costs a product with W per contact.
+  options->iparam[SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] =
+      SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_LIGHT_WITH_FULL_FINAL;
+  solution.reaction = start.size() == rows ? start : VectorX::Zero(rows);
   solution.velocity = VectorX::Zero(rows);
   const int info =
       fc3d_driver(&problem, solution.reaction.data(), solution.velocity.data(), options.get());
@@ -47,7 +51,8 @@ bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, 
 }  // namespace
 
 FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX& q_in,
-                                             const VectorX& mu_in, double tolerance) {
+                                             const VectorX& mu_in, const VectorX& start,
+                                             double tolerance) {
   FrictionContactSolution solution;
   if (q_in.size() == 0) {
     solution.solved = true;
@@ -60,7 +65,7 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
   VectorX mu = mu_in;
   solution.solver = "NSGS";
   solution.solved =
-      runSolver(SICONOS_FRICTION_3D_NSGS, kMaxIterations, tolerance, W, q, mu, solution);
+      runSolver(SICONOS_FRICTION_3D_NSGS, kMaxIterations, tolerance, W, q, mu, start, solution);
   // Short of the tolerance, an answer whose residual is small is still good: Siconos' error is
   // relative to the problem's scale.
   if (!solution.solved) {

@@ -22,7 +22,8 @@ struct FrictionContactSolution {
 // here on barrettGlassDyn and the mug grasps: it converges in tens to hundreds of sweeps, while
 // the global nonsmooth Newton (NSN-AC) fails to factorise the rank-deficient Delassus matrices
 // of rigid bodies with more than 3 contacts.
+// `start` is the first guess of the reactions (a warm start from the last step), zero if empty.
 FrictionContactSolution solveFrictionContact(const MatrixX& W, const VectorX& q, const VectorX& mu,
-                                             double tolerance = 1e-10);
+                                             const VectorX& start = {}, double tolerance = 1e-8);
 
 }  // namespace graspkit::dynamics
