@@ -29,6 +29,7 @@ using dynamics::VectorX;
 // larger share settles stacks faster, and the push-out speed stays below 10 mm/s).
 constexpr double kErrorReduction = 0.2;
 constexpr double kMaxContactMargin = 5.0;  // mm
+constexpr double kFreeMotionMargin = 0.5;  // mm
 // Joint-limit constraints enter the problem this close to a limit (rad or mm), or closer than
 // two steps of the DOF's motion.
 constexpr double kLimitMargin = 1e-3;
@@ -267,13 +268,15 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
     // Contacts within what the step can close, before or after its free motion (a controller
     // can start a finger from rest), so that nothing tunnels: a held object and the hand moving
     // together need no more than the contact threshold.
-    request.threshold = std::min(
-        kMaxContactMargin,
-        kContactThreshold +
-            2.0 * h *
-                std::max(
-                    closingSpeedBound(world, coordinates, u, pair.first, pair.second),
-                    closingSpeedBound(world, coordinates, free_velocity, pair.first, pair.second)));
+    // The free motion's share is capped: a saturated controller's free velocity (what it would
+    // reach if nothing resisted) is far above what contacts let happen, and a margin that large
+    // brings hundreds of contacts into the problem.
+    const double before = closingSpeedBound(world, coordinates, u, pair.first, pair.second);
+    const double after =
+        closingSpeedBound(world, coordinates, free_velocity, pair.first, pair.second);
+    request.threshold =
+        std::min(kMaxContactMargin, kContactThreshold + 2.0 * h * before +
+                                        std::min(2.0 * h * after, kFreeMotionMargin));
     const ContactResult found = findContacts(world, pair.first, pair.second, request);
     if (found.interpenetrating) {
       throw DynamicsError(fmt::format("at t = {:.4f} s, '{}' and '{}' interpenetrate", world.time(),
