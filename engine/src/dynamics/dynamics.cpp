@@ -217,7 +217,8 @@ struct Constraints {
   int contacts = 0;
   int limits = 0;
 
-  void reserve(int n) { G.resize(0, n); }
+  // Rows are added per constraint; the columns are the coordinates.
+  explicit Constraints(int coordinates) : G(0, coordinates) {}
   int add(const MatrixX& rows, double gap_offset, double friction, double soft) {
     const int first = static_cast<int>(G.rows());
     G.conservativeResize(first + 3, Eigen::NoChange);
@@ -512,8 +513,7 @@ std::optional<StepReport> tryStep(World& world, double h, std::pair<BodyRef, Bod
   const Eigen::LDLT<MatrixX> solver(effective);
   const VectorX free_velocity = solver.solve(dynamics.M * u + h * dynamics.f);
 
-  Constraints constraints;
-  constraints.reserve(n);
+  Constraints constraints(n);
   addContacts(world, coordinates, u, free_velocity, h, constraints);
   addJointLimits(world, coordinates, u, h, constraints);
   report.contacts = constraints.contacts;
