@@ -78,6 +78,8 @@ const BadInput kCorpus[] = {
      "content after the root element <world>"},
     {"ScaleOverflow", "bodies/scale_overflow.xml", "scale_overflow.xml", 5, "geometryScaling",
      "beyond the 1e+09 mm a model coordinate may hold"},
+    {"FlockSensorNumberOverflow", "bodies/flock_number_overflow.xml", "flock_number_overflow.xml",
+     5, "useFlockOfBirds", "takes a sensor number"},
     {"ConnectionToMissingChain", "worlds/bad_connection_chain.xml", "bad_connection_chain.xml", 9,
      "connection", "has 1 chains, connection names chain 3"},
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -79,8 +80,16 @@ void readMaterial(const fs::path& file, const XMLElement& root, BodyModel& body)
     body.shearCompliance = positive(file, *shear);
   }
   if (const auto* element = xml::child(root, "useFlockOfBirds")) {
+    // GraspIt!'s own files write the sensor number as a real ("1.0").
+    const double number = xml::number(file, *element);
+    if (!(number >= 0 && number <= 1e6) || number != std::floor(number)) {
+      throw Error(xml::at(file, *element),
+                  fmt::format("useFlockOfBirds takes a sensor number (a whole number from 0), "
+                              "not '{}'",
+                              xml::text(*element)));
+    }
     body.useFlockOfBirds = true;
-    body.flockOfBirdsNumber = static_cast<int>(xml::number(file, *element));
+    body.flockOfBirdsNumber = static_cast<int>(number);
   }
 }
 
