@@ -121,6 +121,7 @@ struct PlanOptions {
   std::optional<int> threads;  // every core when unset
   std::uint64_t seed = 1;
   int top = 20;
+  bool validate = false;  // label each grasp physically (graspkit validate)
   bool json = false;
   std::filesystem::path out;
 };
@@ -203,6 +204,7 @@ struct ValidateOptions {
   int grasp = 0;
   int top = 0;
   double seconds = 2.0;
+  std::optional<int> threads;  // every core when unset
   bool json = false;
 };
 

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "graspkit/autograsp.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/grasp_validation.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/planning/planner.hpp"
@@ -21,6 +22,7 @@
 #include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
 #include "progress_reporter.hpp"
+#include "simulation_report.hpp"
 
 namespace graspkit::cli {
 namespace {
@@ -115,17 +117,23 @@ void printTable(const json& result, std::ostream& out) {
       result["steps"].get<std::int64_t>(), result["seconds"].get<double>(),
       result["steps_per_second"].get<double>(), result["threads"].get<int>(),
       result["seed"].get<std::uint64_t>());
-  out << fmt::format("{:>4} {:>11} {:>10} {:>10} {:>8} {:>3}  {:<30} {}\n", "rank", "energy",
-                     "epsilon", "volume", "contacts", "fc", "translation (mm)",
-                     "quaternion (w x y z)");
+  const bool validated = result.value("validated", false);
+  out << fmt::format("{:>4} {:>11} {:>10} {:>10} {:>8} {:>3} {}  {:<30} {}\n", "rank", "energy",
+                     "epsilon", "volume", "contacts", "fc", validated ? " held" : "",
+                     "translation (mm)", "quaternion (w x y z)");
   int rank = 1;
   for (const json& g : result["grasps"]) {
     const auto& t = g["translation"];
     const auto& q = g["quaternion"];
-    out << fmt::format("{:>4} {:>11.5g} {:>10.5g} {:>10.5g} {:>8} {:>3}  {:<30} {}\n", rank++,
+    // Held: the directions (of 6) in which the hand held the object's weight.
+    const std::string held =
+        validated ? fmt::format("{:>5}",
+                                fmt::format("{}/6", g["validation"]["directions_held"].get<int>()))
+                  : "";
+    out << fmt::format("{:>4} {:>11.5g} {:>10.5g} {:>10.5g} {:>8} {:>3} {}  {:<30} {}\n", rank++,
                        g["energy"].get<double>(), g["epsilon"].get<double>(),
                        g["volume"].get<double>(), g["contacts"].get<int>(),
-                       g["force_closure"].get<bool>() ? "yes" : "no",
+                       g["force_closure"].get<bool>() ? "yes" : "no", held,
                        fmt::format("{:.2f} {:.2f} {:.2f}", t[0].get<double>(), t[1].get<double>(),
                                    t[2].get<double>()),
                        fmt::format("{:.5f} {:.5f} {:.5f} {:.5f}", q[0].get<double>(),
@@ -176,6 +184,25 @@ void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& gr
     for (const auto& file : written) std::filesystem::remove(file);
     throw;
   }
+}
+
+// Labels each grasp as graspkit validate does, on the world the grasp is saved as.
+void addValidation(const PlanningRequest& request, const std::vector<PlannedGrasp>& grasps,
+                   bool quiet, json& result) {
+  if (!quiet && !grasps.empty())
+    std::cerr << fmt::format("graspkit: validating {} grasps (6 directions x 2 s each)\n",
+                             grasps.size());
+  std::vector<World> worlds;
+  for (const PlannedGrasp& g : grasps) worlds.push_back(graspWorld(request, g));
+  const std::vector<ValidationResult> labels =
+      validateGrasps(worlds, request.robot, request.object.index, {}, request.threads);
+  int held = 0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    result["grasps"][i]["validation"] = validationJson(labels[i]);
+    held += labels[i].held ? 1 : 0;
+  }
+  result["validated"] = true;
+  result["held_count"] = held;
 }
 
 std::string duration(double seconds) {
@@ -236,6 +263,9 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   cmd->add_option("--top", options.top, "How many grasps to keep (the best list's size)")
       ->default_val(20)
       ->check(CLI::Range(1, 10000));
+  cmd->add_flag("--validate", options.validate,
+                "Label each grasp physically, as graspkit validate does (the weight in 6 "
+                "directions, 2 s each)");
   cmd->add_flag("--json", options.json, "Print one JSON object");
   cmd->add_option("--out", options.out,
                   "Write the JSON here, and beside it one world file per grasp (the hand "
@@ -328,6 +358,7 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
     forceClosure += g.forceClosure ? 1 : 0;
   }
   result["force_closure_count"] = forceClosure;
+  if (options.validate) addValidation(request, run.grasps, quiet, result);
   if (!options.out.empty()) saveOut(request, run.grasps, result, options.out);
   if (options.json)
     out << result.dump(2) << "\n";

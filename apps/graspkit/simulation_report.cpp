@@ -9,6 +9,38 @@ namespace graspkit::cli {
 
 using nlohmann::json;
 
+namespace {
+
+constexpr const char* kDirectionNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
+}  // namespace
+
+json validationJson(const ValidationResult& result) {
+  json directions = json::array();
+  for (int k = 0; k < 6; ++k) {
+    const DirectionResult& d = result.directions[k];
+    json entry = {{"direction", kDirectionNames[k]},
+                  {"held", d.held},
+                  {"slip_mm", d.slip},
+                  {"turn_deg", d.turn * 180.0 / M_PI}};
+    if (!d.failure.empty()) entry["failure"] = d.failure;
+    directions.push_back(entry);
+  }
+  return {{"held", result.held},
+          {"directions_held", result.directionsHeld},
+          {"directions", directions}};
+}
+
+std::string validationLine(const ValidationResult& result) {
+  std::string line = result.held ? "held" : "not held";
+  for (int k = 0; k < 6; ++k) {
+    const DirectionResult& d = result.directions[k];
+    line += fmt::format("  {} {} ({:.1f} mm, {:.0f} deg)", kDirectionNames[k],
+                        d.held ? "ok" : "lost", d.slip, d.turn * 180.0 / M_PI);
+  }
+  return line;
+}
+
 SimulationOutcome runSimulation(World& world, const SimulateRequest& request) {
   SimulationOutcome outcome;
   SimulateRequest counted = request;

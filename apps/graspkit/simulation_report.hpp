@@ -6,6 +6,7 @@
 #include <string>
 
 #include "graspkit/dynamics.hpp"
+#include "graspkit/grasp_validation.hpp"
 
 namespace graspkit::cli {
 
@@ -21,5 +22,11 @@ SimulationOutcome runSimulation(World& world, const SimulateRequest& request);
 
 nlohmann::json simulationJson(const World& world, const SimulationOutcome& outcome);
 void printSimulation(const World& world, const SimulationOutcome& outcome, std::ostream& out);
+
+// A grasp's validation label: held, directions held, and per direction (+x, -x, +y, -y, +z, -z)
+// whether it held, the slip (mm), the turn (degrees) and the failure, if the simulation failed.
+nlohmann::json validationJson(const ValidationResult& result);
+// The label on one line: "held  +x ok (0.1 mm)  -x lost (12.0 mm) ...".
+std::string validationLine(const ValidationResult& result);
 
 }  // namespace graspkit::cli

@@ -2,6 +2,10 @@
 // along each axis direction in turn (grasp_validation.hpp); a world gives one grasp, a plan one
 // per grasp.
 
+#include <algorithm>
+#include <thread>
+#include <utility>
+
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -11,39 +15,38 @@
 #include "graspkit/grasp_validation.hpp"
 #include "graspkit/render.hpp"
 #include "scene_frames.hpp"
+#include "simulation_report.hpp"
 
 namespace graspkit::cli {
-namespace {
-
 using nlohmann::json;
 
-constexpr const char* kDirectionNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-
-}  // namespace
-
-json validationJson(const ValidationResult& result) {
-  json directions = json::array();
-  for (int k = 0; k < 6; ++k) {
-    const DirectionResult& d = result.directions[k];
-    json entry = {{"direction", kDirectionNames[k]},
-                  {"held", d.held},
-                  {"slip_mm", d.slip},
-                  {"turn_deg", d.turn * 180.0 / M_PI}};
-    if (!d.failure.empty()) entry["failure"] = d.failure;
-    directions.push_back(entry);
-  }
-  return {{"held", result.held},
-          {"directions_held", result.directionsHeld},
-          {"directions", directions}};
-}
-
-ValidationResult validateFrameGrasp(const World& world, const ValidationRequest& request) {
+// The hand and the object a frame's grasp is of.
+std::pair<int, int> validationSubject(const World& world) {
   const GraspSubject subject = graspSubject(world);
   if (!subject.hand) throw Error("validate: the world has no hand (no robot) to hold a grasp");
   if (!subject.object || subject.object->kind != BodyRef::Kind::Body) {
     throw Error("validate: the world has no graspable body to hold");
   }
-  return validateGrasp(world, *subject.hand, subject.object->index, request);
+  return {*subject.hand, subject.object->index};
+}
+
+// Validates each frame, frames that share their hand and object (a plan's) `threads` at a time.
+std::vector<ValidationResult> validateFrames(const std::vector<SceneFrame>& frames,
+                                             const ValidationRequest& request, int threads) {
+  std::vector<ValidationResult> results;
+  std::size_t first = 0;
+  while (first < frames.size()) {
+    const auto subject = validationSubject(frames[first].world);
+    std::vector<World> worlds;
+    std::size_t end = first;
+    for (; end < frames.size() && validationSubject(frames[end].world) == subject; ++end)
+      worlds.push_back(frames[end].world.clone());
+    for (ValidationResult& r :
+         validateGrasps(worlds, subject.first, subject.second, request, threads))
+      results.push_back(std::move(r));
+    first = end;
+  }
+  return results;
 }
 
 void addValidateCommand(CLI::App& app, ValidateOptions& options) {
@@ -58,6 +61,7 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
   cmd->add_option("--top", options.top, "Plans: the first N grasps");
   cmd->add_option("--seconds", options.seconds, "Simulated seconds per direction")
       ->default_val(2.0);
+  cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)");
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 
@@ -69,22 +73,21 @@ int runValidate(const ValidateOptions& options, std::ostream& out) {
                                                      .genericRobots = options.genericRobots,
                                                      .grasp = options.grasp,
                                                      .top = options.top});
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = options.threads.value_or(cores);
+  if (threads < 1) throw Error(fmt::format("--threads {} is not valid", threads));
+  const std::vector<ValidationResult> results = validateFrames(frames, request, threads);
   json grasps = json::array();
   int held = 0;
-  for (const SceneFrame& frame : frames) {
-    const ValidationResult result = validateFrameGrasp(frame.world, request);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const SceneFrame& frame = frames[i];
+    const ValidationResult& result = results[i];
     held += result.held ? 1 : 0;
     json entry = validationJson(result);
     entry["name"] = frame.name;
     grasps.push_back(entry);
     if (options.json) continue;
-    std::string line = fmt::format("{}: {}", frame.name, result.held ? "held" : "not held");
-    for (int k = 0; k < 6; ++k) {
-      const DirectionResult& d = result.directions[k];
-      line +=
-          fmt::format("  {} {} ({:.1f} mm)", kDirectionNames[k], d.held ? "ok" : "lost", d.slip);
-    }
-    out << line << "\n";
+    out << frame.name << ": " << validationLine(result) << "\n";
     for (const DirectionResult& d : result.directions) {
       if (!d.failure.empty()) out << "  simulation stopped: " << d.failure << "\n";
     }

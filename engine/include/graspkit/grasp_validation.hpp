@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "graspkit/dynamics.hpp"
 #include "graspkit/transform.hpp"
@@ -45,5 +46,11 @@ struct ValidationResult {
 // outside its ranges.
 ValidationResult validateGrasp(const World& world, int robot, int object,
                                const ValidationRequest& request = {});
+
+// validateGrasp() on each world (the same robot and object indices in each: a plan's grasp
+// worlds), up to `threads` at a time. Each grasp's result is what validateGrasp() alone gives.
+std::vector<ValidationResult> validateGrasps(const std::vector<World>& worlds, int robot,
+                                             int object, const ValidationRequest& request = {},
+                                             int threads = 1);
 
 }  // namespace graspkit

@@ -136,13 +136,47 @@ SetPoints nextSetPoints(const Robot& robot, double h) {
   return next;
 }
 
-// DOF PD controllers (with gravity compensation) and passive joint springs and friction. Stiffness
-// and damping that stay below maxEffort are taken implicitly (added to the mass matrix as h*Kd +
-// h^2*Kp), so GraspIt!'s stiff gains are stable at its 2.5 ms step; a saturated controller pushes
-// with maxEffort.
+// A DOF's PD controller in one step. Below maxEffort its stiffness and damping are taken
+// implicitly (h*Kd + h^2*Kp on the mass matrix's diagonal), so GraspIt!'s stiff gains are stable
+// at its 2.5 ms step; a saturated controller pushes with maxEffort and nothing more.
+struct Controller {
+  int coordinate = 0;
+  double Kp = 0.0;
+  double Kd = 0.0;
+  double maxEffort = 0.0;  // 0: unlimited
+  double error = 0.0;      // set-point minus position
+  double rate = 0.0;       // the set-point's speed
+  double feedForward = 0.0;
+  double saturated = 0.0;  // the force's sign once it saturates, else 0
+
+  // The force if it acts implicitly and the coordinate ends the step at velocity v.
+  double implicitForce(double v, double h) const {
+    return Kp * (error - h * v) + Kd * (rate - v) + feedForward;
+  }
+  void addTo(VectorX& f, VectorX& damping, double h) const {
+    if (saturated != 0.0) {
+      f[coordinate] += saturated * maxEffort;
+    } else {
+      f[coordinate] += Kp * error + Kd * rate + feedForward;
+      damping[coordinate] += h * Kd + h * h * Kp;
+    }
+  }
+  // Saturates the controller if its force at velocity v would exceed maxEffort; returns whether
+  // it changed.
+  bool saturateAt(double v, double h) {
+    if (saturated != 0.0 || maxEffort <= 0.0) return false;
+    const double force = implicitForce(v, h);
+    if (std::abs(force) <= maxEffort) return false;
+    saturated = std::copysign(1.0, force);
+    return true;
+  }
+};
+
+// DOF PD controllers (with gravity compensation), saturated where their force at the current
+// velocity already exceeds maxEffort, and passive joint springs and friction.
 void addJointForces(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
                     const VectorX& robot_weight, double h, std::vector<SetPoints>& set_points,
-                    VectorX& f, VectorX& damping) {
+                    std::vector<Controller>& controllers, VectorX& f, VectorX& damping) {
   set_points.assign(world.robotCount(), {});
   for (int r = 0; r < world.robotCount(); ++r) {
     const Robot& robot = world.robot(r);
@@ -154,21 +188,26 @@ void addJointForces(const World& world, const GeneralizedCoordinates& coordinate
     for (int d = 0; d < robot.dofCount(); ++d) {
       const Dof& dof = model.dofs[d];
       if (dof.Kp == 0.0 && dof.Kd == 0.0) continue;
-      const int i = offset + d;
       const bool revolute =
           dof.joints.empty() || model.joint(dof.joints.front()).type == JointType::Revolute;
-      double error = set_points[r].references[d] - robot.dofValues()[d];
-      if (revolute) error = wrapAngle(error);
+      Controller controller;
+      controller.coordinate = offset + d;
+      controller.Kp = dof.Kp;
+      controller.Kd = dof.Kd;
+      controller.maxEffort = dof.maxEffort;
+      controller.error = set_points[r].references[d] - robot.dofValues()[d];
+      if (revolute) controller.error = wrapAngle(controller.error);
+      controller.rate = rates[d];
       // The controller carries the robot's own weight (gravity feed-forward), so an arm holds
       // its set-points under gravity instead of sagging by weight / Kp.
-      const double feed_forward = -robot_weight[i];
-      const double force = dof.Kp * error + dof.Kd * (rates[d] - u[i]) + feed_forward;
-      if (dof.maxEffort > 0.0 && std::abs(force) > dof.maxEffort) {
-        f[i] += std::copysign(dof.maxEffort, force);
-      } else {
-        f[i] += dof.Kp * error + dof.Kd * rates[d] + feed_forward;
-        damping[i] += h * dof.Kd + h * h * dof.Kp;
-      }
+      controller.feedForward = -robot_weight[controller.coordinate];
+      // Explicitly, at the current velocity (the step's first guess).
+      const double force = controller.Kp * controller.error +
+                           controller.Kd * (controller.rate - u[controller.coordinate]) +
+                           controller.feedForward;
+      if (controller.maxEffort > 0.0 && std::abs(force) > controller.maxEffort)
+        controller.saturated = std::copysign(1.0, force);
+      controllers.push_back(controller);
     }
     for (int j = 0; j < model.jointCount(); ++j) {
       const Joint& joint = model.joint(j);
@@ -233,11 +272,14 @@ struct Constraints {
   }
 };
 
-// How far the step may close a gap: all of it down to the resting separation; a penetration
-// beyond it is pushed out at a share per step.
+// How far the step may close a gap: all of it down to the resting separation. Inside it a
+// contact only may not close, and below half of it, it is pushed back out at a share per step:
+// the band between keeps bodies that cannot all move apart (an object wedged between fixed
+// links) from asking for push-outs step after step.
 double gapOffset(double separation, double h) {
   const double gap = separation - kRestingSeparation;
-  return gap > 0.0 ? gap / h : kErrorReduction * gap / h;
+  if (gap > 0.0) return gap / h;
+  return separation < 0.5 * kRestingSeparation ? kErrorReduction * gap / h : 0.0;
 }
 
 // A soft contact (either body has <youngs>) gives way like a mattress of GraspIt!'s 3 mm
@@ -482,6 +524,85 @@ void setClosingTargets(World& world, int robot_index) {
 
 namespace {
 
+// How often one step re-solves with more controllers saturated (each pass saturates at least
+// one more, so a hand needs at most its DOF count).
+constexpr int kMaxControllerPasses = 8;
+// A solution closing a contact faster than its gap allows by this (mm/s) could not meet its
+// push-out requests.
+constexpr double kClosingTolerance = 1.0;
+// Siconos' relative residual sought, and the sweeps allowed: fewer with push-out requests, which
+// a solver that has not nearly met them by then (residual 1e-5) is taken not to be able to meet.
+constexpr double kSolverTolerance = 1e-8;
+constexpr int kMaxSolverIterations = 5000;
+constexpr int kPushOutIterations = 300;
+
+// How much faster than its gap allows any contact or limit closes at velocity v (mm/s or rad/s;
+// 0 when none does).
+double overclosing(const Constraints& constraints, const VectorX& v) {
+  double worst = 0.0;
+  for (Eigen::Index row = 0; row < constraints.G.rows(); row += 3) {
+    worst =
+        std::max(worst, -(constraints.G.row(row).dot(v) + std::max(constraints.offset[row], 0.0)));
+  }
+  return worst;
+}
+
+// The step's motion without constraint impulses, and what the constraints need of it.
+struct FreeMotion {
+  Eigen::LDLT<MatrixX> solver;  // of the mass matrix with the implicit gains
+  VectorX velocity;
+  MatrixX MinvGt;  // the solver applied to the constraints' G^T (empty without constraints)
+};
+
+FreeMotion freeMotion(const MassAndForces& dynamics, const VectorX& passive_damping,
+                      const std::vector<Controller>& controllers, const VectorX& u, double h,
+                      const Constraints* constraints = nullptr) {
+  VectorX f = dynamics.f;
+  VectorX damping = passive_damping;
+  for (const Controller& controller : controllers) controller.addTo(f, damping, h);
+  MatrixX effective = dynamics.M;
+  effective.diagonal() += damping;
+  // Coordinates nothing with mass hangs on (a DOF that only moves massless parts) keep a unit
+  // mass so the system stays solvable; they move only as their forces say.
+  for (Eigen::Index i = 0; i < effective.rows(); ++i) {
+    if (effective(i, i) <= 0.0) effective(i, i) = 1.0;
+  }
+  FreeMotion motion{Eigen::LDLT<MatrixX>(effective), {}, {}};
+  motion.velocity = motion.solver.solve(dynamics.M * u + h * f);
+  if (constraints) motion.MinvGt = motion.solver.solve(constraints->G.transpose());
+  return motion;
+}
+
+// The contact and limit impulses of the step (Siconos), from `start`.
+dynamics::FrictionContactSolution solveContacts(const World& world, const Constraints& constraints,
+                                                const VectorX& offset, FreeMotion& motion,
+                                                const VectorX& start, int max_iterations,
+                                                StepReport& report) {
+  if (motion.MinvGt.size() == 0) motion.MinvGt = motion.solver.solve(constraints.G.transpose());
+  MatrixX W = constraints.G * motion.MinvGt;
+  const int count = static_cast<int>(constraints.mu.size());
+  for (int c = 0; c < count; ++c) W(3 * c, 3 * c) += constraints.compliance[c];
+  for (const int row : constraints.limitRows) {  // frictionless: tangents carry nothing
+    W(row + 1, row + 1) = W(row + 2, row + 2) = 1.0;
+  }
+  const VectorX q = constraints.G * motion.velocity + offset;
+  dynamics::FrictionContactSolution solution =
+      dynamics::solveFrictionContact(W, q, constraints.mu, start, kSolverTolerance, max_iterations);
+  report.solverIterations += solution.iterations;
+  report.solverError = solution.error;
+  // Push-out requests may be more than the bodies can do; the caller then asks for less.
+  const bool pushes_out = offset.minCoeff() < 0.0;
+  if (!solution.solved && !pushes_out) {
+    throw DynamicsError(fmt::format("at t = {:.4f} s, the contact problem ({} contacts, {} "
+                                    "joint limits) could not be solved: Siconos {} stopped at "
+                                    "residual {:.3g}",
+                                    world.time(), constraints.contacts, constraints.limits,
+                                    solution.solver, solution.error),
+                        dynamicStateJson(world));
+  }
+  return solution;
+}
+
 // One attempt at a step of h. Returns nullopt when the new poses make two bodies that were in
 // contact interpenetrate (the linearised contacts let an edge or a corner through); the world is
 // then unchanged and the caller splits the step.
@@ -502,48 +623,48 @@ std::optional<StepReport> tryStep(World& world, double h, std::pair<BodyRef, Bod
   MassAndForces dynamics = massAndForces(world, coordinates, u);
   VectorX damping = VectorX::Zero(n);
   std::vector<SetPoints> set_points;
-  addJointForces(world, coordinates, u, dynamics.robotWeight, h, set_points, dynamics.f, damping);
-  MatrixX effective = dynamics.M;
-  effective.diagonal() += damping;
-  // Coordinates nothing with mass hangs on (a DOF that only moves massless parts) keep a unit
-  // mass so the system stays solvable; they move only as their forces say.
-  for (int i = 0; i < n; ++i) {
-    if (effective(i, i) <= 0.0) effective(i, i) = 1.0;
-  }
-  const Eigen::LDLT<MatrixX> solver(effective);
-  const VectorX free_velocity = solver.solve(dynamics.M * u + h * dynamics.f);
+  std::vector<Controller> controllers;
+  addJointForces(world, coordinates, u, dynamics.robotWeight, h, set_points, controllers,
+                 dynamics.f, damping);
+  FreeMotion motion = freeMotion(dynamics, damping, controllers, u, h);
 
   Constraints constraints(n);
-  addContacts(world, coordinates, u, free_velocity, h, constraints);
+  addContacts(world, coordinates, u, motion.velocity, h, constraints);
   addJointLimits(world, coordinates, u, h, constraints);
   report.contacts = constraints.contacts;
   report.jointLimits = constraints.limits;
 
-  VectorX velocity = free_velocity;
+  VectorX velocity = motion.velocity;
   std::vector<ContactImpulse> impulses;
   std::vector<bool> pushed(world.bodies().size(), false);
   if (constraints.G.rows() > 0) {
-    const MatrixX MinvGt = solver.solve(constraints.G.transpose());
-    MatrixX W = constraints.G * MinvGt;
-    const int count = static_cast<int>(constraints.mu.size());
-    for (int c = 0; c < count; ++c) W(3 * c, 3 * c) += constraints.compliance[c];
-    for (const int row : constraints.limitRows) {  // frictionless: tangents carry nothing
-      W(row + 1, row + 1) = W(row + 2, row + 2) = 1.0;
+    VectorX start = warmStart(world, constraints);
+    dynamics::FrictionContactSolution solution;
+    // A controller below maxEffort acts as a stiff implicit spring, which contacts could load far
+    // beyond maxEffort (a finger pressed back by the object it squeezes). Such controllers
+    // saturate and the step is solved again, until every controller's force is what it can give.
+    // Contacts inside the resting separation are pushed back out to it, unless the bodies cannot
+    // all move apart (an object wedged between fingers that are fixed or pushing): then they are
+    // only kept from closing, which standing still always satisfies.
+    VectorX offset = constraints.offset;
+    for (int pass = 0;; ++pass) {
+      const bool push_out = offset.minCoeff() < 0.0;
+      solution = solveContacts(world, constraints, offset, motion, start,
+                               push_out ? kPushOutIterations : kMaxSolverIterations, report);
+      velocity = motion.velocity + motion.MinvGt * solution.reaction;
+      if (push_out &&
+          (!solution.solved || overclosing(constraints, velocity) > kClosingTolerance)) {
+        offset = offset.cwiseMax(0.0);
+        start = solution.reaction;
+        continue;
+      }
+      bool changed = false;
+      for (Controller& controller : controllers)
+        changed = controller.saturateAt(velocity[controller.coordinate], h) || changed;
+      if (!changed || pass == kMaxControllerPasses) break;
+      motion = freeMotion(dynamics, damping, controllers, u, h, &constraints);
+      start = solution.reaction;
     }
-    const VectorX q = constraints.G * free_velocity + constraints.offset;
-    const dynamics::FrictionContactSolution solution =
-        dynamics::solveFrictionContact(W, q, constraints.mu, warmStart(world, constraints));
-    report.solverIterations = solution.iterations;
-    report.solverError = solution.error;
-    if (!solution.solved) {
-      throw DynamicsError(fmt::format("at t = {:.4f} s, the contact problem ({} contacts, {} "
-                                      "joint limits) could not be solved: Siconos {} stopped at "
-                                      "residual {:.3g}",
-                                      world.time(), constraints.contacts, constraints.limits,
-                                      solution.solver, solution.error),
-                          dynamicStateJson(world));
-    }
-    velocity += MinvGt * solution.reaction;
     impulses = contactImpulses(constraints, solution.reaction);
     for (int c = 0; c < constraints.contacts; ++c) {
       if (solution.reaction[3 * c] <= 0.0) continue;

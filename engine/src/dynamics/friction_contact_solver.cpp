@@ -14,7 +14,6 @@ namespace graspkit::dynamics {
 namespace {
 
 constexpr double kAcceptableError = 1e-5;
-constexpr int kMaxIterations = 5000;
 
 struct OptionsDeleter {
   void operator()(SolverOptions* options) const { solver_options_delete(options); }
@@ -52,7 +51,7 @@ bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, 
 
 FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX& q_in,
                                              const VectorX& mu_in, const VectorX& start,
-                                             double tolerance) {
+                                             double tolerance, int max_iterations) {
   FrictionContactSolution solution;
   if (q_in.size() == 0) {
     solution.solved = true;
@@ -65,7 +64,7 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
   VectorX mu = mu_in;
   solution.solver = "NSGS";
   solution.solved =
-      runSolver(SICONOS_FRICTION_3D_NSGS, kMaxIterations, tolerance, W, q, mu, start, solution);
+      runSolver(SICONOS_FRICTION_3D_NSGS, max_iterations, tolerance, W, q, mu, start, solution);
   // Short of the tolerance, an answer whose residual is small is still good: Siconos' error is
   // relative to the problem's scale.
   if (!solution.solved) {

@@ -23,7 +23,10 @@ struct FrictionContactSolution {
 // the global nonsmooth Newton (NSN-AC) fails to factorise the rank-deficient Delassus matrices
 // of rigid bodies with more than 3 contacts.
 // `start` is the first guess of the reactions (a warm start from the last step), zero if empty.
+// At most `max_iterations` sweeps; a solution short of the tolerance is still accepted when its
+// residual is below 1e-5.
 FrictionContactSolution solveFrictionContact(const MatrixX& W, const VectorX& q, const VectorX& mu,
-                                             const VectorX& start = {}, double tolerance = 1e-8);
+                                             const VectorX& start = {}, double tolerance = 1e-8,
+                                             int max_iterations = 5000);
 
 }  // namespace graspkit::dynamics

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "graspkit/world.hpp"
 
@@ -97,6 +101,31 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
   }
   result.held = result.directionsHeld == 6;
   return result;
+}
+
+std::vector<ValidationResult> validateGrasps(const std::vector<World>& worlds, int robot,
+                                             int object, const ValidationRequest& request,
+                                             int threads) {
+  std::vector<ValidationResult> results(worlds.size());
+  if (worlds.empty()) return results;
+  const int workers = std::clamp(threads, 1, static_cast<int>(worlds.size()));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+  auto work = [&](int w) {
+    try {
+      for (std::size_t i = next++; i < worlds.size(); i = next++)
+        results[i] = validateGrasp(worlds[i], robot, object, request);
+    } catch (...) {
+      errors[static_cast<std::size_t>(w)] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (std::thread& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return results;
 }
 
 }  // namespace graspkit
