@@ -122,6 +122,7 @@ struct PlanOptions {
   std::uint64_t seed = 1;
   int top = 20;
   bool validate = false;  // label each grasp physically (graspkit validate)
+  double validateSeconds = 2.0;
   bool json = false;
   std::filesystem::path out;
 };

@@ -188,20 +188,23 @@ void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& gr
 
 // Labels each grasp as graspkit validate does, on the world the grasp is saved as.
 void addValidation(const PlanningRequest& request, const std::vector<PlannedGrasp>& grasps,
-                   bool quiet, json& result) {
+                   double seconds, bool quiet, json& result) {
   if (!quiet && !grasps.empty())
-    std::cerr << fmt::format("graspkit: validating {} grasps (6 directions x 2 s each)\n",
-                             grasps.size());
+    std::cerr << fmt::format("graspkit: validating {} grasps (6 directions x {:g} s each)\n",
+                             grasps.size(), seconds);
+  ValidationRequest validation;
+  validation.seconds = seconds;
   std::vector<World> worlds;
   for (const PlannedGrasp& g : grasps) worlds.push_back(graspWorld(request, g));
   const std::vector<ValidationResult> labels =
-      validateGrasps(worlds, request.robot, request.object.index, {}, request.threads);
+      validateGrasps(worlds, request.robot, request.object.index, validation, request.threads);
   int held = 0;
   for (std::size_t i = 0; i < labels.size(); ++i) {
     result["grasps"][i]["validation"] = validationJson(labels[i]);
     held += labels[i].held ? 1 : 0;
   }
   result["validated"] = true;
+  result["validation_seconds"] = seconds;
   result["held_count"] = held;
 }
 
@@ -266,6 +269,9 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   cmd->add_flag("--validate", options.validate,
                 "Label each grasp physically, as graspkit validate does (the weight in 6 "
                 "directions, 2 s each)");
+  cmd->add_option("--validate-seconds", options.validateSeconds,
+                  "--validate: simulated seconds per direction")
+      ->default_val(2.0);
   cmd->add_flag("--json", options.json, "Print one JSON object");
   cmd->add_option("--out", options.out,
                   "Write the JSON here, and beside it one world file per grasp (the hand "
@@ -358,7 +364,7 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
     forceClosure += g.forceClosure ? 1 : 0;
   }
   result["force_closure_count"] = forceClosure;
-  if (options.validate) addValidation(request, run.grasps, quiet, result);
+  if (options.validate) addValidation(request, run.grasps, options.validateSeconds, quiet, result);
   if (!options.out.empty()) saveOut(request, run.grasps, result, options.out);
   if (options.json)
     out << result.dump(2) << "\n";

@@ -22,7 +22,8 @@ json validationJson(const ValidationResult& result) {
     json entry = {{"direction", kDirectionNames[k]},
                   {"held", d.held},
                   {"slip_mm", d.slip},
-                  {"turn_deg", d.turn * 180.0 / M_PI}};
+                  {"turn_deg", d.turn * 180.0 / M_PI},
+                  {"seconds", d.seconds}};
     if (!d.failure.empty()) entry["failure"] = d.failure;
     directions.push_back(entry);
   }

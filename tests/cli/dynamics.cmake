@@ -103,3 +103,24 @@ string(JSON directions LENGTH "${labels}" grasps 0 directions)
 if(NOT grasps EQUAL 1 OR NOT directions EQUAL 6)
   message(FATAL_ERROR "validate --grasp 1: ${grasps} grasps, ${directions} directions: ${labels}")
 endif()
+
+# plan --validate labels each grasp; validate on the saved plan (its world files) gives the same
+# labels: the saved grasp worlds reload to the grasps the plan validated.
+graspkit_json(labelled plan ${SHARED_DIR}/graspit-data/worlds/plannerMug.xml --steps 1500
+              --threads 1 --seed 3 --top 2 --validate --validate-seconds 0.2
+              --out ${work}/labelled.json --json)
+graspkit_json(relabelled validate labelled.json --seconds 0.2 --json)
+foreach(i RANGE 1)
+  string(JSON planned GET "${labelled}" grasps ${i} validation directions_held)
+  string(JSON again GET "${relabelled}" grasps ${i} directions_held)
+  if(NOT planned EQUAL again)
+    message(FATAL_ERROR "grasp ${i}: plan --validate held ${planned} directions, validate ${again}")
+  endif()
+  foreach(k RANGE 5)
+    string(JSON h1 GET "${labelled}" grasps ${i} validation directions ${k} held)
+    string(JSON h2 GET "${relabelled}" grasps ${i} directions ${k} held)
+    if(NOT h1 STREQUAL h2)
+      message(FATAL_ERROR "grasp ${i} direction ${k}: plan --validate says ${h1}, validate ${h2}")
+    endif()
+  endforeach()
+endforeach()

@@ -73,6 +73,29 @@ TEST(GraspValidation, FrictionGivesWayAboveTheClosedFormPull) {
   EXPECT_FALSE(result.held);
 }
 
+// Ending a direction once everything is at rest gives the label, and within the bound it adds
+// the slip, that running every second gives.
+TEST(GraspValidation, StoppingAtRestAgreesWithTheFullRun) {
+  ClosedGripper gripper = closedGripper();
+  ASSERT_GE(gripper.box, 0);
+  ValidationRequest request;
+  request.seconds = 1.0;
+  request.gravity = 0.9 * criticalAcceleration(gripper.world, gripper.box);
+  const ValidationResult early = validateGrasp(gripper.world, 0, gripper.box, request);
+  request.stopAtRest = false;
+  const ValidationResult full = validateGrasp(gripper.world, 0, gripper.box, request);
+  for (int k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(early.directions[k].held, full.directions[k].held);
+    if (!early.directions[k].held) continue;  // let go: both stop there
+    EXPECT_NEAR(full.directions[k].seconds, request.seconds, 1e-9);
+    EXPECT_LT(early.directions[k].seconds, request.seconds);
+    EXPECT_LE(full.directions[k].slip, early.directions[k].slip + 1e-9);
+    EXPECT_NEAR(early.directions[k].slip, full.directions[k].slip,
+                request.restSpeed * request.seconds + 1e-6);
+  }
+}
+
 // Grasps validated on several threads get what each gets alone, bit for bit: nothing in a
 // simulation (Siconos included) is shared between worlds.
 TEST(GraspValidation, ThreadsGiveEachGraspWhatItGetsAlone) {

@@ -22,14 +22,22 @@ struct ValidationRequest {
   double maxSlip = 5.0;                              // mm, the object's travel relative to the palm
   double maxTurn = 15.0 * 3.14159265358979 / 180.0;  // rad
   double gravity = kStandardGravity;                 // mm/s^2, the size of the pull
+  // A direction ends early once the hand and the object have come to rest under the pull:
+  // every speed below restSpeed (mm/s; rad/s times the object's radius) and every contact
+  // impulse steady for restSeconds. What is left of the run cannot move the object by more
+  // than restSpeed times the time left, which is counted in its slip. False runs every second.
+  bool stopAtRest = true;
+  double restSpeed = 1e-3;
+  double restSeconds = 0.1;
 };
 
 struct DirectionResult {
   Vector3 direction = Vector3::Zero();  // unit, world frame
   bool held = false;
-  double slip = 0.0;    // mm: the largest displacement from the palm seen in the direction's run
-  double turn = 0.0;    // rad: the largest rotation relative to the palm
-  std::string failure;  // a DynamicsError's message, when the simulation itself failed
+  double slip = 0.0;     // mm: the largest displacement from the palm seen in the direction's run
+  double turn = 0.0;     // rad: the largest rotation relative to the palm
+  double seconds = 0.0;  // simulated: less than asked when it ended at rest or let go
+  std::string failure;   // a DynamicsError's message, when the simulation itself failed
 };
 
 struct ValidationResult {

@@ -17,7 +17,8 @@ namespace {
 void checkRequest(const ValidationRequest& request) {
   const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
   if (!positive(request.seconds) || !positive(request.maxSlip) || !positive(request.maxTurn) ||
-      !positive(request.gravity) ||
+      !positive(request.gravity) || !positive(request.restSpeed) ||
+      !(std::isfinite(request.restSeconds) && request.restSeconds >= 0.0) ||
       !(std::isfinite(request.settleSeconds) && request.settleSeconds >= 0.0)) {
     throw Error("grasp validation: seconds, slip, turn and gravity must be positive numbers");
   }
@@ -51,6 +52,48 @@ Transform heldPose(const World& world, int robot) {
   return world.robot(robot).pose().inverse() * world.bodies()[0].pose;
 }
 
+// Whether the hand and the object have come to rest: the object, the hand's DOFs and the contact
+// impulses unchanged (within restSpeed) for restSeconds.
+class RestWatch {
+ public:
+  RestWatch(const ValidationRequest& request, double radius)
+      : request_(request), radius_(std::max(radius, 1.0)) {}
+  double radius() const { return radius_; }
+
+  bool atRest(const World& world, int robot) {
+    const Body& object = world.bodies()[0];
+    double speed = object.state.v.head<3>().norm() + radius_ * object.state.v.tail<3>().norm();
+    for (double v : world.robot(robot).dofVelocities())
+      speed = std::max(speed, radius_ * std::abs(v));
+    const std::vector<ContactImpulse>& impulses = world.lastImpulses();
+    if (speed > request_.restSpeed || !sameImpulses(impulses)) {
+      since_ = world.time();
+      impulses_ = impulses;
+      return false;
+    }
+    return world.time() - since_ >= request_.restSeconds - 1e-9;
+  }
+
+ private:
+  // The same contacts with the same impulses (1e-6 of the largest) as when the rest began.
+  bool sameImpulses(const std::vector<ContactImpulse>& now) const {
+    if (now.size() != impulses_.size()) return false;
+    double largest = 0.0;
+    for (const ContactImpulse& c : impulses_) largest = std::max(largest, c.impulse.norm());
+    for (std::size_t i = 0; i < now.size(); ++i) {
+      if (!(now[i].body1 == impulses_[i].body1) || !(now[i].body2 == impulses_[i].body2) ||
+          (now[i].impulse - impulses_[i].impulse).norm() > 1e-6 * largest)
+        return false;
+    }
+    return true;
+  }
+
+  const ValidationRequest& request_;
+  double radius_;
+  double since_ = -1.0;
+  std::vector<ContactImpulse> impulses_;
+};
+
 }  // namespace
 
 ValidationResult validateGrasp(const World& world, int robot, int object,
@@ -83,13 +126,21 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
     }
     World trial = base.clone();
     trial.setGravity(request.gravity * axes[k]);
+    RestWatch rest(request, base.bodies()[0].model->maxRadius);
     const auto measure = [&](const World& w, const StepReport&) {
       const Transform now = heldPose(w, robot);
       direction.slip = std::max(direction.slip, (now.translation() - held.translation()).norm());
       direction.turn = std::max(
           direction.turn, Quaternion(now.linear()).angularDistance(Quaternion(held.linear())));
+      direction.seconds = w.time() - base.time();
       // Once it has let go, the rest of the run cannot bring it back within the limits.
-      return direction.slip <= request.maxSlip && direction.turn <= request.maxTurn;
+      if (direction.slip > request.maxSlip || direction.turn > request.maxTurn) return false;
+      if (!request.stopAtRest || !rest.atRest(w, robot)) return true;
+      // At rest: what is left of the run could move it by restSpeed times the time left at most.
+      const double left = request.seconds - direction.seconds;
+      direction.slip += request.restSpeed * left;
+      direction.turn += request.restSpeed / rest.radius() * left;
+      return false;
     };
     try {
       simulate(trial, {.seconds = request.seconds, .dt = request.dt, .onStep = measure});
