@@ -67,8 +67,18 @@ void BM_StepBarrettHoldingGlass(benchmark::State& state) {
   setClosingTargets(world, 1);
   simulate(world, {.seconds = 1.5});
   int contacts = 0;
-  for (auto _ : state) contacts = step(world).activeContacts;
+  double sweeps = 0.0, constraints = 0.0;
+  for (auto _ : state) {
+    const StepReport report = step(world);
+    contacts = report.activeContacts;
+    sweeps += report.solverIterations;
+    constraints += report.contacts + report.jointLimits;
+  }
   state.counters["contacts"] = contacts;
+  // Siconos' Gauss-Seidel sweeps and the constraints in its problem, per step.
+  state.counters["sweeps"] = benchmark::Counter(sweeps, benchmark::Counter::kAvgIterations);
+  state.counters["constraints"] =
+      benchmark::Counter(constraints, benchmark::Counter::kAvgIterations);
   rate(state, 6.48e-3);
 }
 BENCHMARK(BM_StepBarrettHoldingGlass)->Unit(benchmark::kMillisecond);

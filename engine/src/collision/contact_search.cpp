@@ -50,6 +50,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
   bool intersecting = false;
   std::vector<unsigned> candidates;
   std::vector<PointPair> pairs;
+  std::vector<std::pair<unsigned, RawContact>> found;
   const double threshold_sq = threshold * threshold;
   for (std::size_t q = 0; q < query.triangles.size(); ++q) {
     const Triangle tq = triangleOf(query, q, moved);
@@ -68,8 +69,10 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
       target_box.extend(target_mesh.vertices[corners[1]]).extend(target_mesh.vertices[corners[2]]);
       if (box.intersects(target_box)) candidates.push_back(t);
     });
-    // Embree's traversal order is not part of its contract; contacts must not depend on it.
-    std::sort(candidates.begin(), candidates.end());
+    // Embree's traversal order is not part of its contract; contacts must not depend on it, so
+    // the few candidates that give contacts are put in triangle order (sorting them all would
+    // cost more than testing them).
+    found.clear();
     for (unsigned t : candidates) {
       const Triangle tt = triangleOf(target_mesh, t, target_mesh.vertices);
       pairs.clear();
@@ -79,8 +82,12 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
       }
       if (pairs.empty()) continue;
       const Vector3 face = (tt.b - tt.a).cross(tt.c - tt.a).normalized();
-      for (const PointPair& p : pairs) out.push_back({p.onFirst, p.onSecond, face});
+      for (const PointPair& p : pairs) found.push_back({t, {p.onFirst, p.onSecond, face}});
     }
+    // Stable: a triangle's own point pairs keep the order triangleContacts gave them.
+    std::stable_sort(found.begin(), found.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [t, contact] : found) out.push_back(contact);
   }
   return intersecting;
 }
