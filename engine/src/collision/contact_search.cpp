@@ -64,10 +64,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
     // Embree finds the triangles near the query's bounding sphere; their boxes sift them.
     candidates.clear();
     target.forEachTriangleNear(center, radius, [&](unsigned t) {
-      const auto& corners = target_mesh.triangles[t];
-      Eigen::AlignedBox3d target_box(target_mesh.vertices[corners[0]]);
-      target_box.extend(target_mesh.vertices[corners[1]]).extend(target_mesh.vertices[corners[2]]);
-      if (box.intersects(target_box)) candidates.push_back(t);
+      if (box.intersects(target.triangleBox(t))) candidates.push_back(t);
     });
     // Embree's traversal order is not part of its contract; contacts must not depend on it, so
     // the few candidates that give contacts are put in triangle order (sorting them all would

@@ -36,8 +36,13 @@ EmbreeMesh::EmbreeMesh(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::mo
   auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
                                                            RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
                                                            triangles.size()));
-  for (std::size_t i = 0; i < triangles.size(); ++i)
+  triangle_boxes_.reserve(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
     for (int k = 0; k < 3; ++k) t[3 * i + k] = triangles[i][k];
+    Eigen::AlignedBox3d box(vertices[triangles[i][0]]);
+    triangle_boxes_.push_back(
+        box.extend(vertices[triangles[i][1]]).extend(vertices[triangles[i][2]]));
+  }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);

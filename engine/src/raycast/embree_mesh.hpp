@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "graspkit/mesh.hpp"
 
@@ -35,6 +36,8 @@ class EmbreeMesh {
   RTCScene scene() const { return scene_; }
   const TriangleMesh& mesh() const { return *mesh_; }
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
+  // Triangle t's bounding box (mesh frame, mm), kept so that searches test it with one load.
+  const Eigen::AlignedBox3d& triangleBox(unsigned t) const { return triangle_boxes_[t]; }
 
   // Calls visit(triangle index) for every triangle whose bounding box may come within `radius`
   // of `center` (mesh frame, mm). It may also visit a few farther ones (Embree works in float);
@@ -73,6 +76,7 @@ class EmbreeMesh {
   std::shared_ptr<const TriangleMesh> mesh_;
   RTCScene scene_ = nullptr;
   Eigen::AlignedBox3d bounds_;
+  std::vector<Eigen::AlignedBox3d> triangle_boxes_;
 };
 
 // The shared Embree geometry of `mesh`, built on first use. Thread-safe.
