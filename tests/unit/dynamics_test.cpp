@@ -313,9 +313,10 @@ TEST(Dynamics, RunawayVelocityIsAnError) {
 namespace graspkit {
 namespace {
 
-TEST(DynamicsJacobian, MatchesFiniteDifferencesOnACoupledHand) {
+// Every link's points move as J * dq says: each DOF nudged by eps against the kinematics.
+void expectJacobiansMatchFiniteDifferences(const std::filesystem::path& robot_file) {
   World world;
-  const int r = world.addRobot(Robot(loadRobotFile(test::modelsDir() / "robots/bh8/bh8.xml")));
+  const int r = world.addRobot(Robot(loadRobotFile(robot_file)));
   Transform pose = Transform::Identity();
   pose.linear() = Eigen::AngleAxisd(0.7, Vector3(1, 2, 3).normalized()).toRotationMatrix();
   pose.translation() = Vector3(10, -20, 30);
@@ -324,7 +325,7 @@ TEST(DynamicsJacobian, MatchesFiniteDifferencesOnACoupledHand) {
   std::vector<double> q(robot.dofCount());
   for (int d = 0; d < robot.dofCount(); ++d) {
     const Dof& dof = robot.model().dofs[d];
-    q[d] = dof.min + (0.3 + 0.1 * d) * (dof.max - dof.min);
+    q[d] = dof.min + (0.3 + 0.03 * (d % 10)) * (dof.max - dof.min);
   }
   world.setDofValues(r, q);
   const dynamics::GeneralizedCoordinates coordinates(world);
@@ -347,6 +348,21 @@ TEST(DynamicsJacobian, MatchesFiniteDifferencesOnACoupledHand) {
             << "dof " << d << " chain " << c << " link " << l;
       }
     }
+  }
+}
+
+// bh8: coupled DOFs (one DOF turns two joints of a finger).
+TEST(DynamicsJacobian, MatchesFiniteDifferencesOnACoupledHand) {
+  expectJacobiansMatchFiniteDifferences(test::modelsDir() / "robots/bh8/bh8.xml");
+}
+
+// GraspIt!'s HumanHand20DOF and ShadowHandSimple: Universal links (two joints, each with its
+// DOF, between a link and the one before) besides Revolute ones.
+TEST(DynamicsJacobian, MatchesFiniteDifferencesWithUniversalLinks) {
+  GRASPKIT_REQUIRE_SHARED();
+  for (const char* hand : {"HumanHand/HumanHand20DOF.xml", "ShadowHand/ShadowHandSimple.xml"}) {
+    SCOPED_TRACE(hand);
+    expectJacobiansMatchFiniteDifferences(*test::graspitDataDir() / "models/robots" / hand);
   }
 }
 
