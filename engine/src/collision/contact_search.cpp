@@ -209,10 +209,18 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   const Transform first_pose = bodyPose(world, first);
   const Transform second_pose = bodyPose(world, second);
 
-  // Walk the smaller mesh's triangles and search the larger one's Embree geometry.
-  const bool walk_second = first_model.mesh->triangleCount() > second_model.mesh->triangleCount();
+  // Walk the smaller mesh's triangles and search the larger one's Embree geometry, unless the
+  // smaller one's triangles are much larger (a table's few against a glass's many): a search
+  // around a large triangle visits everything within its bounding sphere.
+  const auto first_embree = raycast::embreeMesh(first_model.mesh);
+  const auto second_embree = raycast::embreeMesh(second_model.mesh);
+  bool walk_second = first_model.mesh->triangleCount() > second_model.mesh->triangleCount();
+  const double first_size = first_embree->meanTriangleSize();
+  const double second_size = second_embree->meanTriangleSize();
+  if (walk_second ? second_size > 4.0 * first_size : first_size > 4.0 * second_size)
+    walk_second = !walk_second;
   const auto& query = walk_second ? second_model.mesh : first_model.mesh;
-  const auto target = raycast::embreeMesh(walk_second ? first_model.mesh : second_model.mesh);
+  const auto& target = walk_second ? first_embree : second_embree;
   const Transform& query_pose = walk_second ? second_pose : first_pose;
   const Transform& target_pose = walk_second ? first_pose : second_pose;
   const Transform query_to_target = target_pose.inverse() * query_pose;
@@ -220,7 +228,7 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   Eigen::AlignedBox3d reach = target->bounds();
   reach.min().array() -= request.threshold;
   reach.max().array() += request.threshold;
-  const Eigen::AlignedBox3d& query_box = raycast::embreeMesh(query)->bounds();
+  const Eigen::AlignedBox3d& query_box = (walk_second ? second_embree : first_embree)->bounds();
   if (!transformedBox(query_box, query_to_target).intersects(reach)) return result;
 
   std::vector<RawContact> raw;

@@ -43,6 +43,8 @@ EmbreeMesh::EmbreeMesh(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::mo
     triangle_boxes_.push_back(
         box.extend(vertices[triangles[i][1]]).extend(vertices[triangles[i][2]]));
   }
+  for (const Eigen::AlignedBox3d& box : triangle_boxes_)
+    mean_triangle_size_ += box.diagonal().norm() / static_cast<double>(triangle_boxes_.size());
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);

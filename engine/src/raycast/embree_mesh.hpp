@@ -38,6 +38,8 @@ class EmbreeMesh {
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
   // Triangle t's bounding box (mesh frame, mm), kept so that searches test it with one load.
   const Eigen::AlignedBox3d& triangleBox(unsigned t) const { return triangle_boxes_[t]; }
+  // The mean of the triangles' box diagonals, mm: how large a search around one of them is.
+  double meanTriangleSize() const { return mean_triangle_size_; }
 
   // Calls visit(triangle index) for every triangle whose bounding box may come within `radius`
   // of `center` (mesh frame, mm). It may also visit a few farther ones (Embree works in float);
@@ -77,6 +79,7 @@ class EmbreeMesh {
   RTCScene scene_ = nullptr;
   Eigen::AlignedBox3d bounds_;
   std::vector<Eigen::AlignedBox3d> triangle_boxes_;
+  double mean_triangle_size_ = 0.0;
 };
 
 // The shared Embree geometry of `mesh`, built on first use. Thread-safe.
