@@ -4,6 +4,7 @@
 
 #include "collision/triangle_contact.hpp"
 
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -208,6 +209,74 @@ TEST(TriangleContacts, IntersectingTrianglesReturnFalse) {
   EXPECT_FALSE(triangleContacts(kBase, t, kThresholdSq, pairs));
   EXPECT_FALSE(triangleContacts(t, kBase, kThresholdSq, pairs));
   EXPECT_TRUE(pairs.empty());
+}
+
+// GraspIt!'s rule evaluated literally, with no early rejection: every corner against the other
+// face, every edge pair. triangleContacts skips work by plane distances; its pairs must be these.
+std::vector<PointPair> contactsByTheRule(const Triangle& t1, const Triangle& t2,
+                                         double threshold_sq) {
+  auto corner = [](const Triangle& t, const Vector3& p) {
+    for (int i = 0; i < 3; ++i)
+      if ((t.vertex(i) - p).squaredNorm() < 1e-12) return true;
+    return false;
+  };
+  std::vector<PointPair> pairs;
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 p = closestPointOnTriangle(t1, t2.vertex(i));
+    if ((p - t2.vertex(i)).squaredNorm() < threshold_sq) pairs.push_back({p, t2.vertex(i)});
+  }
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 p = closestPointOnTriangle(t2, t1.vertex(i));
+    if ((p - t1.vertex(i)).squaredNorm() < threshold_sq && !corner(t2, p))
+      pairs.push_back({t1.vertex(i), p});
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Vector3 a1 = t1.vertex(i), b1 = t1.vertex((i + 1) % 3);
+      const Vector3 a2 = t2.vertex(j), b2 = t2.vertex((j + 1) % 3);
+      Vector3 c1, c2;
+      if (closestPointsOnSegments(a1, b1, a2, b2, c1, c2) >= threshold_sq) continue;
+      if (corner({a1, b1, b1}, c1) || corner({a2, b2, b2}, c2)) continue;
+      pairs.push_back({c1, c2});
+    }
+  }
+  return pairs;
+}
+
+TEST(TriangleContacts, RandomNearbyPairsFollowTheRuleLiterally) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto point = [&](double spread) -> Vector3 {
+    return Vector3(unit(random), unit(random), unit(random)) * spread;
+  };
+  int with_contacts = 0, intersecting = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Triangle t1{point(1.0), point(1.0), point(1.0)};
+    // The second triangle's corners near the first's plane, some across it.
+    const Vector3 n = (t1.b - t1.a).cross(t1.c - t1.a).normalized();
+    const double lift = 0.3 * unit(random);
+    Triangle t2{point(1.0), point(1.0), point(1.0)};
+    for (Vector3* v : {&t2.a, &t2.b, &t2.c}) *v += (lift + 0.2 * unit(random) - n.dot(*v)) * n;
+    const double threshold_sq = 0.04;
+    std::vector<PointPair> pairs;
+    if (!triangleContacts(t1, t2, threshold_sq, pairs)) {
+      EXPECT_TRUE(trianglesIntersect(t1, t2));
+      ++intersecting;
+      continue;
+    }
+    EXPECT_FALSE(trianglesIntersect(t1, t2)) << "trial " << trial;
+    const std::vector<PointPair> expected = contactsByTheRule(t1, t2, threshold_sq);
+    ASSERT_EQ(pairs.size(), expected.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      EXPECT_EQ(pairs[k].onFirst, expected[k].onFirst) << "trial " << trial;
+      EXPECT_EQ(pairs[k].onSecond, expected[k].onSecond) << "trial " << trial;
+    }
+    with_contacts += !pairs.empty();
+  }
+  // The sample covers all three outcomes, or the comparison above says little.
+  EXPECT_GT(with_contacts, 1000);
+  EXPECT_GT(intersecting, 1000);
+  EXPECT_GT(20000 - with_contacts - intersecting, 1000);
 }
 
 }  // namespace

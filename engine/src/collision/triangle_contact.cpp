@@ -17,14 +17,35 @@ bool isCorner(const Triangle& t, const Vector3& p) {
   return samePoint(p, t.a) || samePoint(p, t.b) || samePoint(p, t.c);
 }
 
-// Does segment [p, q] meet triangle t (closed)? Non-coplanar case by the plane crossing, the
-// coplanar case by the segment against the triangle's edges and containment.
-bool segmentMeetsTriangle(const Vector3& p, const Vector3& q, const Triangle& t) {
-  const Vector3 n = (t.b - t.a).cross(t.c - t.a);
-  const double scale = n.norm();
+// The plane of a triangle and the signed distances of another triangle's corners from it, in
+// units of the normal's length (n is not normalised: the tests below only compare signs and
+// scaled thresholds, which saves a square root per test).
+struct PlaneDistances {
+  Vector3 n;
+  double norm_sq = 0.0;
+  double norm = 0.0;
+  double d[3] = {0.0, 0.0, 0.0};
+};
+
+PlaneDistances planeDistances(const Triangle& plane, const Triangle& t) {
+  PlaneDistances out;
+  out.n = (plane.b - plane.a).cross(plane.c - plane.a);
+  out.norm_sq = out.n.squaredNorm();
+  out.norm = std::sqrt(out.norm_sq);
+  out.d[0] = out.n.dot(t.a - plane.a);
+  out.d[1] = out.n.dot(t.b - plane.a);
+  out.d[2] = out.n.dot(t.c - plane.a);
+  return out;
+}
+
+// Does segment [p, q] meet triangle t (closed)? dp and dq are the ends' signed distances from
+// t's plane, whose normal n (not normalised) has length `scale`. Non-coplanar case by the plane
+// crossing, the coplanar case by the segment against the triangle's edges and containment.
+bool segmentMeetsTriangle(const Vector3& p, const Vector3& q, double dp, double dq,
+                          const Triangle& t, const Vector3& n, double scale) {
   if (scale == 0.0) return false;  // degenerate triangle: no area to meet
-  const double dp = n.dot(p - t.a) / scale;
-  const double dq = n.dot(q - t.a) / scale;
+  dp /= scale;
+  dq /= scale;
   constexpr double kFlat = 1e-12;
   if ((dp > kFlat && dq > kFlat) || (dp < -kFlat && dq < -kFlat)) return false;
   auto inside = [&](const Vector3& x) {
@@ -45,20 +66,42 @@ bool segmentMeetsTriangle(const Vector3& p, const Vector3& q, const Triangle& t)
   return inside(p + s * (q - p));
 }
 
+// Whether the triangles share a point, given each one's corners' distances from the other's
+// plane (on1: t1's corners from t2's plane; on2: t2's corners from t1's plane).
+bool trianglesIntersect(const Triangle& t1, const Triangle& t2, const PlaneDistances& on1,
+                        const PlaneDistances& on2) {
+  // Two triangles share a point iff an edge of one meets the other.
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (segmentMeetsTriangle(t1.vertex(i), t1.vertex(j), on1.d[i], on1.d[j], t2, on1.n, on1.norm))
+      return true;
+    if (segmentMeetsTriangle(t2.vertex(i), t2.vertex(j), on2.d[i], on2.d[j], t1, on2.n, on2.norm))
+      return true;
+  }
+  return false;
+}
+
 enum class SideTest { Far, OneSide, Straddles };
 
-// Where triangle t lies relative to the plane of `plane`: entirely farther than the threshold on
-// one side, entirely on one side, or touching or crossing it.
-SideTest sideOfPlane(const Triangle& plane, const Triangle& t, double threshold_sq) {
-  const Vector3 n = (plane.b - plane.a).cross(plane.c - plane.a);
-  const double norm_sq = n.squaredNorm();
-  if (norm_sq == 0.0) return SideTest::Straddles;  // degenerate: no plane to test against
-  const double d0 = n.dot(t.a - plane.a), d1 = n.dot(t.b - plane.a), d2 = n.dot(t.c - plane.a);
-  const double reach = std::sqrt(threshold_sq * norm_sq);
-  if ((d0 >= reach && d1 >= reach && d2 >= reach) || (d0 <= -reach && d1 <= -reach && d2 <= -reach))
+// Where a triangle lies relative to a plane: entirely farther than the threshold on one side,
+// entirely on one side, or touching or crossing it.
+SideTest sideOf(const PlaneDistances& plane, double threshold_sq) {
+  if (plane.norm_sq == 0.0) return SideTest::Straddles;  // degenerate: no plane to test against
+  const double reach = std::sqrt(threshold_sq * plane.norm_sq);
+  const double* d = plane.d;
+  if ((d[0] >= reach && d[1] >= reach && d[2] >= reach) ||
+      (d[0] <= -reach && d[1] <= -reach && d[2] <= -reach))
     return SideTest::Far;
-  if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return SideTest::OneSide;
+  if ((d[0] > 0 && d[1] > 0 && d[2] > 0) || (d[0] < 0 && d[1] < 0 && d[2] < 0))
+    return SideTest::OneSide;
   return SideTest::Straddles;
+}
+
+// Whether a point at plane distance d (unnormalised) is surely beyond the threshold from
+// anything on the plane's triangle: the distance to a triangle is at least the distance to its
+// plane. The factor keeps the shortcut off the borderline, where rounding could decide.
+bool beyondReach(double d, const PlaneDistances& plane, double threshold_sq) {
+  return plane.norm_sq > 0.0 && d * d > threshold_sq * plane.norm_sq * (1.0 + 1e-9);
 }
 
 }  // namespace
@@ -120,40 +163,48 @@ double closestPointsOnSegments(const Vector3& p1, const Vector3& q1, const Vecto
 }
 
 bool trianglesIntersect(const Triangle& t1, const Triangle& t2) {
-  // Two triangles share a point iff an edge of one meets the other.
-  for (int i = 0; i < 3; ++i) {
-    if (segmentMeetsTriangle(t1.vertex(i), t1.vertex((i + 1) % 3), t2)) return true;
-    if (segmentMeetsTriangle(t2.vertex(i), t2.vertex((i + 1) % 3), t1)) return true;
-  }
-  return false;
+  return trianglesIntersect(t1, t2, planeDistances(t2, t1), planeDistances(t1, t2));
 }
 
 bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_sq,
                       std::vector<PointPair>& pairs) {
   // Cheap rejections first: a triangle wholly beyond the threshold on one side of the other's
   // plane has no contact with it, and one wholly on one side cannot intersect it.
-  const SideTest side2 = sideOfPlane(t1, t2, threshold_sq);
+  const PlaneDistances on2 = planeDistances(t1, t2);  // t2's corners from t1's plane
+  const SideTest side2 = sideOf(on2, threshold_sq);
   if (side2 == SideTest::Far) return true;
-  const SideTest side1 = sideOfPlane(t2, t1, threshold_sq);
+  const PlaneDistances on1 = planeDistances(t2, t1);  // t1's corners from t2's plane
+  const SideTest side1 = sideOf(on1, threshold_sq);
   if (side1 == SideTest::Far) return true;
   const bool may_intersect = side1 == SideTest::Straddles && side2 == SideTest::Straddles;
-  if (may_intersect && trianglesIntersect(t1, t2)) return false;
+  if (may_intersect && trianglesIntersect(t1, t2, on1, on2)) return false;
   for (int i = 0; i < 3; ++i) {
+    if (beyondReach(on2.d[i], on2, threshold_sq)) continue;
     const Vector3 v = t2.vertex(i);
     const Vector3 p = closestPointOnTriangle(t1, v);
     if ((p - v).squaredNorm() < threshold_sq) pairs.push_back({p, v});
   }
   for (int i = 0; i < 3; ++i) {
+    if (beyondReach(on1.d[i], on1, threshold_sq)) continue;
     const Vector3 v = t1.vertex(i);
     const Vector3 p = closestPointOnTriangle(t2, v);
     if ((p - v).squaredNorm() < threshold_sq && !isCorner(t2, p)) pairs.push_back({v, p});
   }
+  const double reach = std::sqrt(threshold_sq);
   for (int i = 0; i < 3; ++i) {
-    const Vector3 a1 = t1.vertex(i), b1 = t1.vertex((i + 1) % 3);
+    const int i_next = (i + 1) % 3;
+    // An edge beyond the threshold on one side of the other's plane is that far from its edges.
+    if (beyondReach(on1.d[i], on1, threshold_sq) && beyondReach(on1.d[i_next], on1, threshold_sq) &&
+        (on1.d[i] > 0) == (on1.d[i_next] > 0))
+      continue;
+    const Vector3 a1 = t1.vertex(i), b1 = t1.vertex(i_next);
     for (int j = 0; j < 3; ++j) {
-      const Vector3 a2 = t2.vertex(j), b2 = t2.vertex((j + 1) % 3);
+      const int j_next = (j + 1) % 3;
+      if (beyondReach(on2.d[j], on2, threshold_sq) &&
+          beyondReach(on2.d[j_next], on2, threshold_sq) && (on2.d[j] > 0) == (on2.d[j_next] > 0))
+        continue;
+      const Vector3 a2 = t2.vertex(j), b2 = t2.vertex(j_next);
       // Edges whose boxes stay farther apart than the threshold need no closest points.
-      const double reach = std::sqrt(threshold_sq);
       if ((a1.cwiseMin(b1).array() > a2.cwiseMax(b2).array() + reach).any() ||
           (a2.cwiseMin(b2).array() > a1.cwiseMax(b1).array() + reach).any())
         continue;
