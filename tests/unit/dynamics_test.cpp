@@ -248,6 +248,33 @@ TEST(Dynamics, PdControllerTorqueIsClampedToMaxEffort) {
               1e-9);
 }
 
+// GraspIt!'s compliant DOF pushes towards its target with maxEffort through a 40 mm lever,
+// ramped in over the first second: torque tau(t) = maxEffort * 40 * t, so from rest
+// theta(t) = maxEffort * 40 * t^3 / (6 I), and after the ramp the torque stays at its full value.
+TEST(Dynamics, CompliantDofRampsItsTorqueOverTheFirstSecond) {
+  World world;
+  world.setGravity(Vector3::Zero());
+  auto model = pendulumModel(100.0);
+  model->dofs[0].type = DofType::Compliant;
+  model->dofs[0].maxEffort = 3.85e5;
+  const int r = addPendulum(world, model);
+  world.setDofTargets(r, std::vector<double>{3.0});
+  const double inertia_pivot = 500.0 * (2.0 * 40.0 * 40.0 / 12.0 + 100.0 * 100.0);
+  const double full_torque = 3.85e5 * 40.0;
+  simulate(world, {.seconds = 0.5, .dt = 0.0005});
+  const double t = world.time();
+  const double expected = full_torque * t * t * t / (6.0 * inertia_pivot);
+  EXPECT_NEAR(world.robot(r).dofValues()[0], expected, 0.01 * expected);
+  EXPECT_NEAR(world.robot(r).dofVelocities()[0], full_torque * t * t / (2.0 * inertia_pivot),
+              0.01 * full_torque * t * t / (2.0 * inertia_pivot));
+  // Past the ramp the angular acceleration is the full torque's.
+  simulate(world, {.seconds = 0.6, .dt = 0.0005});
+  const double v0 = world.robot(r).dofVelocities()[0];
+  simulate(world, {.seconds = 0.1, .dt = 0.0005});
+  const double acceleration = (world.robot(r).dofVelocities()[0] - v0) / 0.1;
+  EXPECT_NEAR(acceleration, full_torque / inertia_pivot, 0.01 * full_torque / inertia_pivot);
+}
+
 TEST(Dynamics, RefusesBadTimeSteps) {
   World world;
   world.addBody(cube());

@@ -172,6 +172,19 @@ struct Controller {
   }
 };
 
+// GraspIt!'s compliant DOF is a force source, not a PD: it pushes towards its set-point with a
+// force that ramps from 0 to maxEffort over the first second of the simulation, acting on a
+// revolute DOF through a 40 mm lever.
+constexpr double kCompliantRampSeconds = 1.0;
+constexpr double kCompliantLever = 40.0;  // mm
+
+double compliantForce(const Dof& dof, bool revolute, double error, double time) {
+  if (revolute) error = wrapAngle(error);
+  if (error == 0.0 || dof.maxEffort <= 0.0) return 0.0;
+  const double force = dof.maxEffort * std::min(1.0, time / kCompliantRampSeconds);
+  return std::copysign(revolute ? force * kCompliantLever : force, error);
+}
+
 // DOF PD controllers (with gravity compensation), saturated where their force at the current
 // velocity already exceeds maxEffort, and passive joint springs and friction.
 void addJointForces(const World& world, const GeneralizedCoordinates& coordinates, const VectorX& u,
@@ -187,9 +200,14 @@ void addJointForces(const World& world, const GeneralizedCoordinates& coordinate
     const RobotModel& model = robot.model();
     for (int d = 0; d < robot.dofCount(); ++d) {
       const Dof& dof = model.dofs[d];
-      if (dof.Kp == 0.0 && dof.Kd == 0.0) continue;
       const bool revolute =
           dof.joints.empty() || model.joint(dof.joints.front()).type == JointType::Revolute;
+      if (dof.type == DofType::Compliant) {
+        f[offset + d] += compliantForce(
+            dof, revolute, set_points[r].targets[d] - robot.dofValues()[d], world.time());
+        continue;
+      }
+      if (dof.Kp == 0.0 && dof.Kd == 0.0) continue;
       Controller controller;
       controller.coordinate = offset + d;
       controller.Kp = dof.Kp;
