@@ -275,6 +275,94 @@ TEST(Dynamics, CompliantDofRampsItsTorqueOverTheFirstSecond) {
   EXPECT_NEAR(acceleration, full_torque / inertia_pivot, 0.01 * full_torque / inertia_pivot);
 }
 
+// A finger of two links (100 mm and 60 mm bars turning about z) on one breakaway DOF that
+// drives both joints at ratio 1, closing towards 1.5 rad, and a block [30, 45] x [30, 45] whose
+// corner (45, 30) the proximal bar's top face (5 mm off its centre line) meets when
+// 30 cos t - 45 sin t = 5, at t = 0.4954 rad; contacts rest 0.1 mm apart, 0.0018 rad before
+// that at the corner's 54 mm. The distal bar clears the block all the way to 1.5 rad.
+struct BreakawayFinger {
+  World world;
+  int robot = 0;
+};
+
+BreakawayFinger breakawayFinger(double break_away_torque) {
+  auto model = std::make_shared<RobotModel>();
+  model->name = "finger";
+  model->type = "Robot";
+  model->isHand = false;
+  KinematicChain chain;
+  for (const double length : {100.0, 60.0}) {
+    Joint joint;
+    joint.a = length;
+    joint.min = 0.0;
+    joint.max = 1.5;
+    chain.joints.push_back(joint);
+    Link link;
+    link.lastJoint = static_cast<int>(chain.joints.size()) - 1;
+    link.name = "finger_chain0_link" + std::to_string(link.lastJoint);
+    // The bar ends 2 mm short of the next joint, so the links do not touch each other.
+    link.body = makeBody(test::box(Vector3(-length + 2.0, -5, -5), Vector3(-2.0, 5, 5)),
+                         BodyKind::Obstacle, Material::Metal, 100.0, link.name)
+                    .model;
+    chain.links.push_back(link);
+  }
+  model->chains.push_back(chain);
+  Dof dof;
+  dof.type = DofType::Breakaway;
+  dof.min = 0.0;
+  dof.max = 1.5;
+  dof.joints = {0, 1};
+  dof.defaultVelocity = 1.0;
+  dof.Kp = 1.0e10;
+  dof.Kd = 1.0e7;
+  dof.maxEffort = 1.0e9;  // 1 N m
+  dof.breakAwayTorque = break_away_torque;
+  model->dofs.push_back(dof);
+
+  BreakawayFinger finger;
+  finger.world.setGravity(Vector3::Zero());
+  finger.robot = finger.world.addRobot(Robot(model));
+  finger.world.addBody(makeBody(test::box(Vector3(30, 30, -20), Vector3(45, 45, 20)),
+                                BodyKind::Obstacle, Material::Wood, 1000.0, "block"));
+  setClosingTargets(finger.world, finger.robot);
+  return finger;
+}
+
+TEST(Dynamics, BreakawayClutchSlipsAndTheDistalJointCloses) {
+  // 0.1 N m (GraspIt!'s units once read: N mm), a tenth of what the DOF can push with.
+  BreakawayFinger finger = breakawayFinger(100.0);
+  simulate(finger.world, {.seconds = 3.0});
+  const Robot& robot = finger.world.robot(finger.robot);
+  // The proximal joint stays where the block stopped it, the DOF and the distal joint close to
+  // their limit.
+  EXPECT_NEAR(robot.jointValues()[0], 0.4954 - 0.0018, 0.001);
+  EXPECT_TRUE(robot.breakaway()[0].engaged);
+  EXPECT_NEAR(robot.dofValues()[0], 1.5, 0.01);
+  EXPECT_NEAR(robot.jointValues()[1], 1.5, 0.01);
+}
+
+TEST(Dynamics, BreakawayClutchHoldsBelowItsTorque) {
+  // 10 N m: more than the DOF's 1 N m, so the whole finger stops at the block.
+  BreakawayFinger finger = breakawayFinger(10000.0);
+  simulate(finger.world, {.seconds = 3.0});
+  const Robot& robot = finger.world.robot(finger.robot);
+  EXPECT_FALSE(robot.breakaway()[0].engaged);
+  EXPECT_NEAR(robot.jointValues()[0], 0.4954 - 0.0018, 0.001);
+  EXPECT_NEAR(robot.dofValues()[0], 0.4954 - 0.0018, 0.001);
+}
+
+TEST(Dynamics, BreakawayClutchTakesHoldAgainWhenTheDofOpens) {
+  BreakawayFinger finger = breakawayFinger(100.0);
+  simulate(finger.world, {.seconds = 3.0});
+  ASSERT_TRUE(finger.world.robot(finger.robot).breakaway()[0].engaged);
+  finger.world.setDofTargets(finger.robot, std::vector<double>{0.2});
+  simulate(finger.world, {.seconds = 3.0});
+  const Robot& robot = finger.world.robot(finger.robot);
+  EXPECT_FALSE(robot.breakaway()[0].engaged);
+  EXPECT_NEAR(robot.jointValues()[0], 0.2, 0.01);
+  EXPECT_NEAR(robot.jointValues()[1], 0.2, 0.01);
+}
+
 TEST(Dynamics, RefusesBadTimeSteps) {
   World world;
   world.addBody(cube());

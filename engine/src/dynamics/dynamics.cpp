@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 
+#include "dynamics/breakaway_clutch.hpp"
 #include "dynamics/friction_contact_solver.hpp"
 #include "dynamics/generalized_coordinates.hpp"
 #include "graspkit/collision.hpp"
@@ -703,6 +704,7 @@ std::optional<StepReport> tryStep(World& world, double h, std::pair<BodyRef, Bod
     next.setDofReferences(r, set_points[r].references);
   }
   integrate(next, coordinates, velocity, h, pushed);
+  dynamics::updateBreakawayClutches(world, next, impulses, h);
   next.setLastImpulses(std::move(impulses));
   // Only bodies that had contacts can have reached each other within the step (the contact
   // margins bound the closing speed).
