@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -272,6 +273,8 @@ struct Constraints {
   std::vector<std::pair<BodyRef, BodyRef>> bodies;  // per contact constraint
   std::vector<Vector3> localPoints;                 // per contact: its point in body1's frame
   std::vector<Matrix3> frames;                      // per contact: columns t1, t2, normal
+  std::vector<double> distances;                    // per contact: its separation, mm
+  std::map<std::pair<BodyRef, BodyRef>, double> thresholds;  // per pair: the search's, mm
   int contacts = 0;
   int limits = 0;
 
@@ -345,6 +348,7 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
                                       describe(world, pair.first), describe(world, pair.second)),
                           dynamicStateJson(world));
     }
+    constraints.thresholds[{pair.first, pair.second}] = request.threshold;
     const BodyModel& first = bodyModel(world, pair.first);
     const BodyModel& second = bodyModel(world, pair.second);
     const double compliance = contactCompliance(first, second, h);
@@ -363,6 +367,7 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
       constraints.bodies.emplace_back(pair.first, pair.second);
       constraints.localPoints.push_back(first_inverse * contact.position1);
       constraints.frames.push_back(contact.frame);
+      constraints.distances.push_back(contact.distance);
       ++constraints.contacts;
     }
   }
@@ -625,6 +630,34 @@ dynamics::FrictionContactSolution solveContacts(const World& world, const Constr
   return solution;
 }
 
+// How far apart the linearised motion must leave a pair's contacts for the step to be taken
+// as not having brought the pair into collision without asking FCL.
+constexpr double kSurelyApart = 0.02;  // mm
+
+// Whether the step (velocity v over h) surely left bodies a and b apart, so that the FCL check
+// of the new poses can be skipped (near-touching meshes make it the dearest part of a step).
+// Feature pairs farther apart than the pair's search threshold close by at most the step's
+// displacement bound; every pair within it is a contact, whose gap the linearised motion
+// predicts, and rotation bends a point's path from that prediction by at most the displacement
+// times the angle turned.
+bool surelyApart(const World& world, const GeneralizedCoordinates& coordinates,
+                 const Constraints& constraints, const VectorX& v, double h, const BodyRef& a,
+                 const BodyRef& b) {
+  const auto threshold = constraints.thresholds.find({a, b});
+  if (threshold == constraints.thresholds.end()) return false;
+  const double displacement = h * closingSpeedBound(world, coordinates, v, a, b);
+  if (!(displacement < threshold->second)) return false;
+  const double turn =
+      h * ((coordinates.angularJacobian(a) - coordinates.angularJacobian(b)) * v).norm();
+  const double bend = displacement * std::min(turn, 1.0);
+  for (int c = 0; c < constraints.contacts; ++c) {
+    if (!(constraints.bodies[c].first == a) || !(constraints.bodies[c].second == b)) continue;
+    const double predicted = constraints.distances[c] + h * constraints.G.row(3 * c).dot(v);
+    if (!(predicted - bend >= kSurelyApart)) return false;
+  }
+  return true;
+}
+
 // One attempt at a step of h. Returns nullopt when the new poses make two bodies that were in
 // contact interpenetrate (the linearised contacts let an edge or a corner through); the world is
 // then unchanged and the caller splits the step.
@@ -713,6 +746,7 @@ std::optional<StepReport> tryStep(World& world, double h, std::pair<BodyRef, Bod
   // A pair that already touched as the step began (FCL counts touching surfaces as colliding) is
   // not the step's doing.
   for (const auto& [a, b] : touching) {
+    if (surelyApart(world, coordinates, constraints, velocity, h, a, b)) continue;
     if (collide(next, a, b) && !collide(world, a, b)) {
       offending = {a, b};
       return std::nullopt;
