@@ -398,6 +398,22 @@ TEST(Dynamics, NanVelocityStopsWithTheState) {
   }
 }
 
+// A cube placed exactly on the floor (its bottom in the floor's plane, as world files put
+// objects) is in contact, not in collision: it rests there.
+TEST(Dynamics, ABodyStandingExactlyOnAnotherRests) {
+  World world;
+  world.addBody(floorSlab());
+  Body body = cube();
+  body.setPose(translation(0, 0, 25));
+  world.addBody(body);
+  simulate(world, {.seconds = 1.0});
+  const Vector3 moved = world.bodies()[1].pose.translation() - Vector3(0, 0, 25);
+  // It settles at the resting separation, 0.1 mm up, and goes nowhere else.
+  EXPECT_LT(moved.head<2>().norm(), 1e-3);
+  EXPECT_GE(moved.z(), 0.0);
+  EXPECT_LT(moved.z(), 0.1 + 1e-3);
+}
+
 TEST(Dynamics, InterpenetrationAtTheStartIsAnError) {
   World world;
   world.addBody(floorSlab());

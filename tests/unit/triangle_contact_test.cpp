@@ -211,6 +211,26 @@ TEST(TriangleContacts, IntersectingTrianglesReturnFalse) {
   EXPECT_TRUE(pairs.empty());
 }
 
+// Coplanar triangles that overlap touch: GraspIt! counts them as intersecting, the dynamics
+// (touching_is_contact) as in contact at distance 0, and so for a tilt within rounding.
+TEST(TriangleContacts, CoplanarTouchingIsContactWhenAsked) {
+  const Triangle floor{Vector3(-10, -10, 0), Vector3(10, -10, 0), Vector3(0, 10, 0)};
+  for (const double tilt : {0.0, 1e-6}) {
+    SCOPED_TRACE(tilt);
+    const Triangle bottom{Vector3(-1, -1, tilt), Vector3(1, -1, -tilt), Vector3(0, 1, 0)};
+    std::vector<PointPair> pairs;
+    EXPECT_FALSE(triangleContacts(floor, bottom, kThresholdSq, pairs));
+    pairs.clear();
+    ASSERT_TRUE(triangleContacts(floor, bottom, kThresholdSq, pairs, true));
+    EXPECT_EQ(pairs.size(), 3u);  // the bottom's corners on the floor's face
+    for (const PointPair& p : pairs) EXPECT_LT((p.onFirst - p.onSecond).norm(), 1e-5);
+  }
+  // Across by more than the tolerance is interpenetration either way.
+  const Triangle through{Vector3(-1, -1, 0.01), Vector3(1, -1, -0.01), Vector3(0, 1, 0)};
+  std::vector<PointPair> pairs;
+  EXPECT_FALSE(triangleContacts(floor, through, kThresholdSq, pairs, true));
+}
+
 // GraspIt!'s rule evaluated literally, with no early rejection: every corner against the other
 // face, every edge pair. triangleContacts skips work by plane distances; its pairs must be these.
 std::vector<PointPair> contactsByTheRule(const Triangle& t1, const Triangle& t2,

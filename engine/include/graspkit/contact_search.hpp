@@ -23,6 +23,9 @@ struct ContactRequest {
   // taken in its own body's frame, are nearer (a figure with no physical meaning, but its
   // contact sets follow from it); false keeps the truly closer pair.
   bool graspitDuplicates = true;
+  // Surfaces that touch without crossing (a mug standing on a floor, its bottom in the floor's
+  // plane) give contacts at distance 0; GraspIt! counts them as interpenetrating.
+  bool touchingIsContact = false;
 };
 
 struct ContactResult {

@@ -37,7 +37,7 @@ Eigen::AlignedBox3d transformedBox(const Eigen::AlignedBox3d& box, const Transfo
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame.
 bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
-                 const raycast::EmbreeMesh& target, double threshold,
+                 const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
                  std::vector<RawContact>& out) {
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
@@ -73,7 +73,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
     for (unsigned t : candidates) {
       const Triangle tt = triangleOf(target_mesh, t, target_mesh.vertices);
       pairs.clear();
-      if (!collision::triangleContacts(tq, tt, threshold_sq, pairs)) {
+      if (!collision::triangleContacts(tq, tt, threshold_sq, pairs, touching_is_contact)) {
         intersecting = true;
         continue;
       }
@@ -232,13 +232,19 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   if (!transformedBox(query_box, query_to_target).intersects(reach)) return result;
 
   std::vector<RawContact> raw;
-  result.interpenetrating = searchPairs(*query, query_to_target, *target, request.threshold, raw);
+  result.interpenetrating = searchPairs(*query, query_to_target, *target, request.threshold,
+                                        request.touchingIsContact, raw);
   const Transform first_inverse = first_pose.inverse();
   const Transform second_inverse = second_pose.inverse();
   for (RawContact& r : raw) {
     r.onFirst = target_pose * r.onFirst;
     r.onSecond = target_pose * r.onSecond;
     r.intoFirst = target_pose.linear() * r.intoFirst;
+    // Touching points give no direction of their own (their gap is rounding): they take the
+    // face's normal, as points at distance 0 do.
+    if (request.touchingIsContact &&
+        r.distanceSq() < collision::kTouchingTolerance * collision::kTouchingTolerance)
+      r.onSecond = r.onFirst;
     if (walk_second) {
       std::swap(r.onFirst, r.onSecond);
       r.intoFirst = -r.intoFirst;  // the face was the first body's, pointing out of it

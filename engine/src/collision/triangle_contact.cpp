@@ -100,6 +100,14 @@ SideTest sideOf(const PlaneDistances& plane, double threshold_sq) {
 // Whether a point at plane distance d (unnormalised) is surely beyond the threshold from
 // anything on the plane's triangle: the distance to a triangle is at least the distance to its
 // plane. The factor keeps the shortcut off the borderline, where rounding could decide.
+// Whether a triangle crosses a plane by more than rounding: corners farther than
+// kTouchingTolerance on both sides.
+bool crosses(const PlaneDistances& plane) {
+  const double tolerance = kTouchingTolerance * plane.norm;
+  const double* d = plane.d;
+  return std::max({d[0], d[1], d[2]}) > tolerance && std::min({d[0], d[1], d[2]}) < -tolerance;
+}
+
 bool beyondReach(double d, const PlaneDistances& plane, double threshold_sq) {
   return plane.norm_sq > 0.0 && d * d > threshold_sq * plane.norm_sq * (1.0 + 1e-9);
 }
@@ -167,7 +175,7 @@ bool trianglesIntersect(const Triangle& t1, const Triangle& t2) {
 }
 
 bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_sq,
-                      std::vector<PointPair>& pairs) {
+                      std::vector<PointPair>& pairs, bool touching_is_contact) {
   // Cheap rejections first: a triangle wholly beyond the threshold on one side of the other's
   // plane has no contact with it, and one wholly on one side cannot intersect it.
   const PlaneDistances on2 = planeDistances(t1, t2);  // t2's corners from t1's plane
@@ -176,7 +184,8 @@ bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_s
   const PlaneDistances on1 = planeDistances(t2, t1);  // t1's corners from t2's plane
   const SideTest side1 = sideOf(on1, threshold_sq);
   if (side1 == SideTest::Far) return true;
-  const bool may_intersect = side1 == SideTest::Straddles && side2 == SideTest::Straddles;
+  bool may_intersect = side1 == SideTest::Straddles && side2 == SideTest::Straddles;
+  if (touching_is_contact) may_intersect = may_intersect && crosses(on1) && crosses(on2);
   if (may_intersect && trianglesIntersect(t1, t2, on1, on2)) return false;
   for (int i = 0; i < 3; ++i) {
     if (beyondReach(on2.d[i], on2, threshold_sq)) continue;

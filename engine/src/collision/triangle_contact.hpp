@@ -13,6 +13,10 @@ struct Triangle {
   Vector3 vertex(int i) const { return i == 0 ? a : (i == 1 ? b : c); }
 };
 
+// Surfaces apart or across by less than this touch (mm): files give 7 or 8 digits, so a face
+// meant to lie in a plane can tilt out of it by 1e-6 mm.
+constexpr double kTouchingTolerance = 1e-5;
+
 struct PointPair {
   Vector3 onFirst;
   Vector3 onSecond;
@@ -32,8 +36,11 @@ bool trianglesIntersect(const Triangle& t1, const Triangle& t2);
 // t1's face; every vertex of t1 near t2's face unless the nearest point is one of t2's corners
 // (already counted); every edge pair whose nearest points are both interior to the edges.
 // Appends the pairs (on t1, on t2) and returns true, or returns false when the triangles
-// intersect (no contacts then: they interpenetrate).
+// intersect (no contacts then: they interpenetrate). With `touching_is_contact`, triangles
+// that share points but neither crosses the other's plane by more than kTouchingTolerance touch:
+// they
+// give their pairs at distance 0.
 bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_sq,
-                      std::vector<PointPair>& pairs);
+                      std::vector<PointPair>& pairs, bool touching_is_contact = false);
 
 }  // namespace graspkit::collision

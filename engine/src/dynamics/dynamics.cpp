@@ -326,6 +326,8 @@ void addContacts(const World& world, const GeneralizedCoordinates& coordinates, 
   // but not for a curved body on a face, whose deepest points may lie inside that perimeter.
   request.compact = false;
   request.graspitDuplicates = false;
+  // A body standing exactly on another (as worlds place them) is in contact, not in collision.
+  request.touchingIsContact = true;
   for (const BodyPair& pair : nearbyPairs(world, kMaxContactMargin)) {
     if (!coordinates.motion(pair.first).moves() && !coordinates.motion(pair.second).moves()) {
       continue;
