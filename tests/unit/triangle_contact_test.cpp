@@ -225,6 +225,15 @@ TEST(TriangleContacts, CoplanarTouchingIsContactWhenAsked) {
     EXPECT_EQ(pairs.size(), 3u);  // the bottom's corners on the floor's face
     for (const PointPair& p : pairs) EXPECT_LT((p.onFirst - p.onSecond).norm(), 1e-5);
   }
+  // A wall standing on the floor along an edge touches it: its pairs take the floor's normal
+  // (t2's face), a direction apart. Seen the other way the wall's face normal runs along the
+  // floor, no direction apart, and those pairs are dropped.
+  const Triangle wall{Vector3(-1, 0, 0), Vector3(1, 0, 0), Vector3(0, 0, 2)};
+  std::vector<PointPair> on_floor, on_wall;
+  ASSERT_TRUE(triangleContacts(wall, floor, kThresholdSq, on_floor, true));
+  EXPECT_FALSE(on_floor.empty());
+  ASSERT_TRUE(triangleContacts(floor, wall, kThresholdSq, on_wall, true));
+  for (const PointPair& p : on_wall) EXPECT_GT((p.onFirst - p.onSecond).norm(), 1e-5);
   // Across by more than the tolerance is interpenetration either way.
   const Triangle through{Vector3(-1, -1, 0.01), Vector3(1, -1, -0.01), Vector3(0, 1, 0)};
   std::vector<PointPair> pairs;

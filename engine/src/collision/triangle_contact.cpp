@@ -187,6 +187,7 @@ bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_s
   bool may_intersect = side1 == SideTest::Straddles && side2 == SideTest::Straddles;
   if (touching_is_contact) may_intersect = may_intersect && crosses(on1) && crosses(on2);
   if (may_intersect && trianglesIntersect(t1, t2, on1, on2)) return false;
+  const std::size_t first_pair = pairs.size();
   for (int i = 0; i < 3; ++i) {
     if (beyondReach(on2.d[i], on2, threshold_sq)) continue;
     const Vector3 v = t2.vertex(i);
@@ -223,6 +224,18 @@ bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_s
         continue;
       pairs.push_back({c1, c2});
     }
+  }
+  // A touching pair takes t2's face normal (the contact search's rule for points at distance
+  // 0), which is a direction apart only if t1 lies on t2's outer side: a face meeting another
+  // along an edge at right angles touches it there too, but its normal points along the other.
+  if (touching_is_contact && on1.norm_sq > 0.0 &&
+      std::min({on1.d[0], on1.d[1], on1.d[2]}) < -kTouchingTolerance * on1.norm) {
+    constexpr double kTouchingSq = kTouchingTolerance * kTouchingTolerance;
+    pairs.erase(std::remove_if(pairs.begin() + static_cast<std::ptrdiff_t>(first_pair), pairs.end(),
+                               [](const PointPair& p) {
+                                 return (p.onFirst - p.onSecond).squaredNorm() < kTouchingSq;
+                               }),
+                pairs.end());
   }
   return true;
 }

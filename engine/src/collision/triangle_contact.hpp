@@ -38,8 +38,8 @@ bool trianglesIntersect(const Triangle& t1, const Triangle& t2);
 // Appends the pairs (on t1, on t2) and returns true, or returns false when the triangles
 // intersect (no contacts then: they interpenetrate). With `touching_is_contact`, triangles
 // that share points but neither crosses the other's plane by more than kTouchingTolerance touch:
-// they
-// give their pairs at distance 0.
+// they give their pairs at distance 0, kept only where t1 lies on the outer side of t2's face
+// (whose normal the contact then takes).
 bool triangleContacts(const Triangle& t1, const Triangle& t2, double threshold_sq,
                       std::vector<PointPair>& pairs, bool touching_is_contact = false);
 
