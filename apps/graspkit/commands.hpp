@@ -10,6 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "load_flags.hpp"
+
 #include "graspkit/transform.hpp"
 #include "script_flags.hpp"
 
@@ -24,8 +26,7 @@ CLI::Validator existingFile();
 
 struct InfoOptions {
   std::filesystem::path file;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   std::string dofs;   // comma-separated DOF values
   std::string robot;  // name or 0-based index; the first robot when empty
   bool json = false;
@@ -36,8 +37,7 @@ int runInfo(const InfoOptions& options, std::ostream& out);
 
 struct GraspOptions {
   std::filesystem::path world;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   std::string robot;   // name or 0-based index; the world's first hand when empty
   std::string object;  // body name; the first graspable body when empty
   std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
@@ -105,8 +105,7 @@ int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out);
 
 struct PlanOptions {
   std::filesystem::path world;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   std::string robot;   // name or 0-based index; the world's first hand when empty
   std::string object;  // the first graspable body when empty
   std::string planner = "simann";
@@ -136,8 +135,7 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out);
 struct RenderOptions {
   std::filesystem::path input;  // a world XML or a plan JSON
   std::filesystem::path out;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   std::string size = "640x480";
   std::string camera = "auto";
   bool contacts = false;
@@ -156,8 +154,7 @@ int runRender(const RenderOptions& options, std::ostream& out);
 struct ExportOptions {
   std::filesystem::path input;
   std::filesystem::path gltf;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   int grasp = 0;
   int top = 0;
 };
@@ -169,8 +166,7 @@ int runExport(const ExportOptions& options, std::ostream& out);
 struct ViewOptions {
   std::filesystem::path input;
   std::filesystem::path html;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   int top = 0;
 };
 
@@ -180,8 +176,7 @@ int runView(const ViewOptions& options, std::ostream& out);
 
 struct SimulateOptions {
   std::filesystem::path world;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   double seconds = 1.0;
   double dt = 0.0025;
   std::string gravity;  // "X,Y,Z" or "off"; the world's default when empty
@@ -200,8 +195,7 @@ Vector3 parseGravity(const std::string& text);
 
 struct ValidateOptions {
   std::filesystem::path input;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   int grasp = 0;
   int top = 0;
   double seconds = 2.0;
@@ -211,12 +205,6 @@ struct ValidateOptions {
 
 void addValidateCommand(CLI::App& app, ValidateOptions& options);
 int runValidate(const ValidateOptions& options, std::ostream& out);
-
-// The options every command that loads files shares: --root and --generic-robots. With no
-// --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own models,
-// <prefix>/share/graspkit/models.
-void addLoadFlags(CLI::App& command, std::vector<std::filesystem::path>& roots,
-                  bool& generic_robots);
 
 // "1,2.5,-3" -> {1, 2.5, -3}; throws graspkit::Error naming `option` for anything else
 // (empty items, trailing text, NaN or infinity).

@@ -18,12 +18,12 @@ void addExportCommand(CLI::App& app, ExportOptions& options) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--top", options.top, "Plans: the first N grasps (all when not given)")
       ->check(CLI::Range(1, 1000000));
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
 }
 
 int runExport(const ExportOptions& options, std::ostream& out) {
-  const std::vector<SceneFrame> frames = loadFrames(
-      {options.input, options.roots, options.genericRobots, true, options.grasp, options.top});
+  const std::vector<SceneFrame> frames =
+      loadFrames({options.input, options.load, true, options.grasp, options.top});
   writeFileAtomically(options.gltf, framesGltf(frames));
   out << fmt::format("wrote {} ({} scene{})\n", options.gltf.string(), frames.size(),
                      frames.size() == 1 ? "" : "s");

@@ -190,7 +190,7 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("grasp", "Place a hand, optionally close it, report contacts and quality");
   cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
   cmd->add_option("--robot", options.robot,
                   "The hand: a robot's name or 0-based index (default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
@@ -203,9 +203,7 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
 
 int runGrasp(const GraspOptions& options, std::ostream& out) {
   const WrenchSpaceType gws = parseGws(options.gws);  // before the (slower) load
-  World world = loadWorldFile(
-      options.world,
-      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  World world = loadWorldFile(options.world, options.load.options());
   const int robot = chooseHand(world, options.robot);
   const BodyRef object = findObject(world, options.object);
   if (!options.pose.empty()) world.setRobotPose(robot, parsePose(options.pose));

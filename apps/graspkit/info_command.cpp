@@ -159,14 +159,12 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
   cmd->add_option("--dofs", options.dofs, "DOF values to set, comma-separated (rad or mm)");
   cmd->add_option("--robot", options.robot,
                   "Which robot --dofs applies to: a name or 0-based index (default: the first)");
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 
 int runInfo(const InfoOptions& options, std::ostream& out) {
-  World world = loadAnyFile(
-      options.file,
-      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  World world = loadAnyFile(options.file, options.load.options());
   // --robot is checked even without --dofs: a wrong name or index must not pass unnoticed.
   const int robot = options.robot.empty() ? 0 : robotByNameOrIndex(world, options.robot);
   if (!options.dofs.empty()) {

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "commands.hpp"
+#include "load_flags.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,12 +32,28 @@ bool rootInEnvironment() {
 
 }  // namespace
 
-void addLoadFlags(CLI::App& command, std::vector<fs::path>& roots, bool& generic_robots) {
-  command.add_option("--root", roots, "Folder that world <filename> paths are relative to")
+LoadOptions LoadFlags::options() const {
+  LoadOptions options;
+  options.roots = roots;
+  options.genericRobotFallback = genericRobots;
+  options.packagePaths = packagePaths;
+  options.urdfPalm = palm;
+  return options;
+}
+
+void addLoadFlags(CLI::App& command, LoadFlags& flags) {
+  command.add_option("--root", flags.roots, "Folder that world <filename> paths are relative to")
       ->allow_extra_args(false);
-  command.add_flag("--generic-robots", generic_robots,
+  command.add_flag("--generic-robots", flags.genericRobots,
                    "Load a robot whose type no plugin provides as a generic Hand (with a warning)");
+  command
+      .add_option("--package-path", flags.packagePaths,
+                  "URDF: a folder holding the packages package:// paths name (repeatable)")
+      ->allow_extra_args(false);
+  command.add_option("--palm", flags.palm,
+                     "URDF: the link to take as the palm (default: the root)");
   // Applied once the command line is read, and only when it names no root.
+  auto& roots = flags.roots;
   command.parse_complete_callback([&roots] {
     if (!roots.empty() || rootInEnvironment()) return;
     if (fs::path models = installedModels(); !models.empty()) roots.push_back(std::move(models));

@@ -232,7 +232,7 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan grasps with a planner plugin and print the best, each closed and measured");
   cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
   cmd->add_option("--robot", options.robot,
                   "The hand: a robot's name or 0-based index (default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
@@ -280,9 +280,7 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
 
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
   checkOut(options.out);
-  auto world = std::make_shared<World>(loadWorldFile(
-      options.world,
-      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots}));
+  auto world = std::make_shared<World>(loadWorldFile(options.world, options.load.options()));
   PlanningRequest request;
   request.world = world;
   request.robot = chooseHand(*world, options.robot);

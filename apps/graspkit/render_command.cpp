@@ -85,13 +85,12 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
   cmd->add_option("--samples", options.samples, "Rays per pixel side (2: 4 rays, smoother edges)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
 }
 
 int runRender(const RenderOptions& options, std::ostream& out) {
   const auto [width, height] = parseSize(options.size);
-  FrameSource source{options.input,    options.roots, options.genericRobots,
-                     options.contacts, options.grasp, options.top};
+  FrameSource source{options.input, options.load, options.contacts, options.grasp, options.top};
   const std::vector<SceneFrame> frames = loadFrames(source);
   // A sheet of 20 full-size tiles would not fit in memory; refuse before drawing any.
   if (static_cast<double>(width) * height * static_cast<double>(frames.size()) > 64e6)

@@ -81,7 +81,7 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
     throw Error(SourceLocation{file.string(), 0, "world"}, "not a file name");
   std::filesystem::path planned = worldName.get<std::string>();
   if (!std::filesystem::exists(planned)) planned = file.parent_path() / planned;
-  LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
+  LoadOptions load = source.load.options();
   for (auto folder = std::filesystem::absolute(planned).parent_path();;
        folder = folder.parent_path()) {
     load.roots.push_back(folder);
@@ -159,7 +159,7 @@ std::vector<SceneFrame> loadFrames(const FrameSource& source) {
   if (source.grasp > 0)
     throw Error(
         fmt::format("--grasp picks a grasp of a plan; {} is a world", source.input.string()));
-  const LoadOptions load{.roots = source.roots, .genericRobotFallback = source.genericRobots};
+  const LoadOptions load = source.load.options();
   std::vector<SceneFrame> frames;
   frames.push_back(
       frameOf(source.input.stem().string(), loadWorldFile(source.input, load), source.contacts));

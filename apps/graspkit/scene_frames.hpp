@@ -11,6 +11,7 @@
 #include "graspkit/contact.hpp"
 #include "graspkit/render.hpp"
 #include "graspkit/world.hpp"
+#include "load_flags.hpp"
 
 namespace graspkit::cli {
 
@@ -25,8 +26,7 @@ struct SceneFrame {
 
 struct FrameSource {
   std::filesystem::path input;  // a world XML or a plan JSON
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
   bool contacts = false;  // find the contacts of the world's first hand with its first object
   int grasp = 0;          // plans: only grasp N (1-based) when > 0
   int top = 0;            // plans: the first N grasps when > 0 (all when 0)

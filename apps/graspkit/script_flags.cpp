@@ -26,7 +26,7 @@ void addScriptFlags(CLI::App& command, ScriptFlags& flags) {
                   "Most memory the script's Lua heap may hold, MiB (0: no limit)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1 << 22));
-  addLoadFlags(command, flags.roots, flags.genericRobots);
+  addLoadFlags(command, flags.load);
 }
 
 lua::ScriptOptions scriptOptions(const ScriptFlags& flags) {
@@ -37,8 +37,7 @@ lua::ScriptOptions scriptOptions(const ScriptFlags& flags) {
   options.timeoutSeconds = flags.timeout;
   options.memoryLimitBytes = static_cast<std::size_t>(flags.memoryMiB) << 20;
   options.exitProcessWhenStuck = true;  // --timeout is a promise to the user: keep it
-  options.load.roots = flags.roots;
-  options.load.genericRobotFallback = flags.genericRobots;
+  options.load = flags.load.options();
   return options;
 }
 

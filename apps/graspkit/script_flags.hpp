@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "load_flags.hpp"
+
 #include "graspkit/lua/script_host.hpp"
 
 namespace graspkit::cli {
@@ -18,8 +20,7 @@ struct ScriptFlags {
   std::optional<double> timeout;  // seconds
   // MiB of Lua heap (0: no limit); the default is ScriptOptions' 1 GiB.
   std::size_t memoryMiB = lua::ScriptOptions::kDefaultMemoryLimitBytes >> 20;
-  std::vector<std::filesystem::path> roots;
-  bool genericRobots = false;
+  LoadFlags load;
 };
 
 void addScriptFlags(CLI::App& command, ScriptFlags& flags);

@@ -34,7 +34,7 @@ Vector3 parseGravity(const std::string& text) {
 void addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   CLI::App* cmd = app.add_subcommand("simulate", "Step a world's dynamics (gravity on by default)");
   cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
   cmd->add_option("--seconds", options.seconds, "Simulated time, s")->default_val(1.0);
   cmd->add_option("--dt", options.dt, "Time step, s")->default_val(kDefaultTimeStep);
   cmd->add_option("--gravity", options.gravity,
@@ -50,9 +50,7 @@ void addSimulateCommand(CLI::App& app, SimulateOptions& options) {
 
 int runSimulate(const SimulateOptions& options, std::ostream& out) {
   if (options.every < 1) throw Error("--every must be at least 1");
-  World world = loadWorldFile(
-      options.world,
-      LoadOptions{.roots = options.roots, .genericRobotFallback = options.genericRobots});
+  World world = loadWorldFile(options.world, options.load.options());
   if (!options.gravity.empty()) world.setGravity(parseGravity(options.gravity));
   if (options.autograsp) setClosingTargets(world, chooseHand(world, ""));
 

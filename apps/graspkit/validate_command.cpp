@@ -56,7 +56,7 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
   cmd->add_option("input", options.input, "World XML (the hand closed on the object) or plan JSON")
       ->required()
       ->check(existingFile());
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
   cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)");
   cmd->add_option("--top", options.top, "Plans: the first N grasps");
   cmd->add_option("--seconds", options.seconds, "Simulated seconds per direction")
@@ -68,11 +68,8 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
 int runValidate(const ValidateOptions& options, std::ostream& out) {
   ValidationRequest request;
   request.seconds = options.seconds;
-  const std::vector<SceneFrame> frames = loadFrames({.input = options.input,
-                                                     .roots = options.roots,
-                                                     .genericRobots = options.genericRobots,
-                                                     .grasp = options.grasp,
-                                                     .top = options.top});
+  const std::vector<SceneFrame> frames = loadFrames(
+      {.input = options.input, .load = options.load, .grasp = options.grasp, .top = options.top});
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = options.threads.value_or(cores);
   if (threads < 1) throw Error(fmt::format("--threads {} is not valid", threads));

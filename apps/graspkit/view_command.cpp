@@ -101,7 +101,7 @@ void addViewCommand(CLI::App& app, ViewOptions& options) {
   cmd->add_option("--html", options.html, "The page to write")->required();
   cmd->add_option("--top", options.top, "Plans: the first N grasps (all when not given)")
       ->check(CLI::Range(1, 1000000));
-  addLoadFlags(*cmd, options.roots, options.genericRobots);
+  addLoadFlags(*cmd, options.load);
 }
 
 int runView(const ViewOptions& options, std::ostream& out) {
@@ -110,7 +110,7 @@ int runView(const ViewOptions& options, std::ostream& out) {
         "graspkit view: this graspkit was built without the web viewer (it needs node and "
         "npm when it is built; see docs/pictures.md)");
   const std::vector<SceneFrame> frames =
-      loadFrames({options.input, options.roots, options.genericRobots, true, 0, options.top});
+      loadFrames({options.input, options.load, true, 0, options.top});
   // Contact markers sized by the object, as render sizes them.
   std::vector<BodyRef> object;
   for (const BodyRef& body : frames.front().focus)

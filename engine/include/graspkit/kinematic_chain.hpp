@@ -23,8 +23,8 @@ std::vector<Transform> jointFrames(const KinematicChain& chain,
                                    const Transform& chain_base_in_world,
                                    std::span<const double> joint_values);
 
-// World poses of the chain's links: link l sits at the frame of its last joint, or at the
-// chain base when it consumes no joint before it.
+// World poses of the chain's links: link l sits at the frame of its last joint (or at the
+// chain base when it consumes no joint before it), times its own Link::frame.
 std::vector<Transform> linkPoses(const KinematicChain& chain, const Transform& chain_base_in_world,
                                  std::span<const double> joint_values);
 

@@ -35,6 +35,9 @@ struct Link {
   std::string name;  // <robot>_chain<c>_link<l>
   DynamicJointType jointType = DynamicJointType::Revolute;
   int lastJoint = -1;  // chain-local index of the joint whose DH frame carries this link
+  // The link's own frame in that DH frame: identity for GraspIt!'s robots; a URDF link keeps
+  // its URDF frame, which DH frames cannot always be (URDF frames sit on the joint axis).
+  Transform frame = Transform::Identity();
   CollisionRule collisionRule = CollisionRule::Default;
   std::optional<LinkRef> overlapTarget;
   std::string sensorType;

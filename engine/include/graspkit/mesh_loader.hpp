@@ -2,7 +2,7 @@
 // Reading geometry files into triangle meshes:
 //   Inventor (.iv) and VRML 2 (.wrl) through Coin3D (shape nodes tessellated, transforms applied),
 //   OFF through the reader in geometry/off_reader.cpp,
-//   STL, OBJ and PLY through assimp.
+//   STL, OBJ, PLY and COLLADA (.dae, as URDF hands use) through assimp.
 
 #include <filesystem>
 #include <string_view>
@@ -11,12 +11,12 @@
 
 namespace graspkit {
 
-enum class MeshFormat { Auto, Inventor, Off, Ply, Stl, Obj };
+enum class MeshFormat { Auto, Inventor, Off, Ply, Stl, Obj, Collada };
 
 // Guesses the format from the file extension (case-insensitive); Inventor when unknown.
 MeshFormat meshFormatFromExtension(const std::filesystem::path& path);
 
-// True for the extensions loadMesh reads (iv, wrl, off, ply, stl, stlb, obj; any case).
+// True for the extensions loadMesh reads (iv, wrl, off, ply, stl, stlb, obj, dae; any case).
 bool isMeshFile(const std::filesystem::path& path);
 
 // Loads a geometry file. Throws graspkit::Error naming the file (and line where the parser

@@ -1,4 +1,4 @@
-// STL (ASCII and binary), OBJ and PLY through assimp. assimp triangulates polygons, welds
+// STL (ASCII and binary), OBJ, PLY and COLLADA through assimp. assimp triangulates polygons, welds
 // identical vertices within each mesh and bakes the node transforms into the vertices; we
 // concatenate its meshes into one and keep only the triangles (points and lines bound nothing).
 
@@ -42,6 +42,8 @@ const char* formatHint(MeshFormat format) {
       return "obj";
     case MeshFormat::Ply:
       return "ply";
+    case MeshFormat::Collada:
+      return "dae";
     default:
       return "";
   }

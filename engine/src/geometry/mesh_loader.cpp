@@ -39,7 +39,7 @@ bool isMeshFile(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".iv" || ext == ".wrl" || ext == ".off" || ext == ".ply" || ext == ".stl" ||
-         ext == ".stlb" || ext == ".obj";
+         ext == ".stlb" || ext == ".obj" || ext == ".dae";
 }
 
 MeshFormat meshFormatFromExtension(const std::filesystem::path& path) {
@@ -48,6 +48,7 @@ MeshFormat meshFormatFromExtension(const std::filesystem::path& path) {
   if (ext == "ply") return MeshFormat::Ply;
   if (ext == "stl" || ext == "stlb") return MeshFormat::Stl;
   if (ext == "obj") return MeshFormat::Obj;
+  if (ext == "dae") return MeshFormat::Collada;
   // .iv and .wrl, and anything unknown: GraspIt! hands every geometry file it does not
   // recognise to Coin, which also detects VRML 2 from the header line.
   return MeshFormat::Inventor;
@@ -62,6 +63,7 @@ TriangleMesh readMesh(const std::filesystem::path& path, MeshFormat format) {
     case MeshFormat::Ply:
     case MeshFormat::Stl:
     case MeshFormat::Obj:
+    case MeshFormat::Collada:
       return detail::readWithAssimp(path, format);
     case MeshFormat::Auto:
     case MeshFormat::Inventor:

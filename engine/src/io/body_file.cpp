@@ -31,8 +31,9 @@ MeshFormat formatFromType(const fs::path& file, const XMLElement& element,
   if (t == "ply") return MeshFormat::Ply;
   if (t == "stl") return MeshFormat::Stl;
   if (t == "obj") return MeshFormat::Obj;
+  if (t == "dae") return MeshFormat::Collada;
   throw Error(xml::at(file, element),
-              fmt::format("unknown geometry type '{}' (Inventor, off, ply, stl or obj)", t));
+              fmt::format("unknown geometry type '{}' (Inventor, off, ply, stl, obj or dae)", t));
 }
 
 double positive(const fs::path& file, const XMLElement& element) {
@@ -247,6 +248,9 @@ std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& opti
       break;
     case MeshFormat::Obj:
       type = "obj";
+      break;
+    case MeshFormat::Collada:
+      type = "dae";
       break;
     default:
       break;

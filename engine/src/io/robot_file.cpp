@@ -1,5 +1,7 @@
 #include "graspkit/io/robot_file.hpp"
 
+#include "graspkit/io/urdf_file.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -10,6 +12,7 @@
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/registry.hpp"
+#include "model/dof_ranges.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -360,23 +363,7 @@ class RobotReader {
   // DOF ranges are the intersection of their joints' limits divided by the coupling ratio;
   // default values (degrees for revolute DOFs) are clamped into that range.
   void finishDofs(const XMLElement& root, RobotModel& robot) {
-    std::vector<bool> revolute(robot.dofs.size(), true);
-    for (Dof& dof : robot.dofs) {
-      dof.min = -std::numeric_limits<double>::infinity();
-      dof.max = std::numeric_limits<double>::infinity();
-    }
-    for (const KinematicChain& chain : robot.chains) {
-      for (std::size_t j = 0; j < chain.joints.size(); ++j) {
-        const Joint& joint = chain.joints[j];
-        Dof& dof = robot.dofs[joint.dof];
-        dof.joints.push_back(chain.firstJoint + static_cast<int>(j));
-        revolute[joint.dof] = joint.type == JointType::Revolute;
-        double lo = joint.min / joint.ratio, hi = joint.max / joint.ratio;
-        if (joint.ratio < 0) std::swap(lo, hi);
-        dof.min = std::max(dof.min, lo);
-        dof.max = std::min(dof.max, hi);
-      }
-    }
+    const std::vector<bool> revolute = model::gatherDofJoints(robot);
     const auto dof_elements = xml::children(root, "dof");
     for (std::size_t d = 0; d < robot.dofs.size(); ++d) {
       Dof& dof = robot.dofs[d];
@@ -539,6 +526,7 @@ class RobotReader {
 
 std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, const LoadOptions& options,
                                                 ModelCache* cache) {
+  if (isUrdfFile(file)) return loadUrdfFile(file, options);
   // Without a caller's cache, a local one still reads a link file used by several links once.
   ModelCache local;
   ModelCache* used = cache ? cache : &local;

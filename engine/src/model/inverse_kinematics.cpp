@@ -95,7 +95,7 @@ EndState endState(const Robot& robot, const KinematicChain& chain, const std::ve
   const std::vector<double> joint_values = chainJointValues(chain, dofs);
   const std::vector<Transform> frames = jointFrames(chain, chain_base, joint_values);
   const int last_joint = chain.links.back().lastJoint;  // joints after it do not move the end
-  EndState state{last_joint < 0 ? chain_base : frames[last_joint],
+  EndState state{(last_joint < 0 ? chain_base : frames[last_joint]) * chain.links.back().frame,
                  Jacobian::Zero(6, static_cast<Eigen::Index>(driving.size()))};
   for (int j = 0; j <= last_joint; ++j) {
     const Joint& joint = chain.joints[j];

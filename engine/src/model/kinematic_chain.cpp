@@ -36,7 +36,8 @@ std::vector<Transform> linkPoses(const KinematicChain& chain, const Transform& c
   std::vector<Transform> poses;
   poses.reserve(chain.links.size());
   for (const Link& link : chain.links) {
-    poses.push_back(link.lastJoint < 0 ? chain_base_in_world : frames[link.lastJoint]);
+    poses.push_back((link.lastJoint < 0 ? chain_base_in_world : frames[link.lastJoint]) *
+                    link.frame);
   }
   return poses;
 }

@@ -2,7 +2,10 @@
 // Options shared by the file readers.
 
 #include <filesystem>
+#include <string>
 #include <vector>
+
+#include "graspkit/material.hpp"
 
 namespace graspkit {
 
@@ -19,6 +22,12 @@ struct LoadOptions {
   bool genericRobotFallback = false;
   // Where robot types are looked up; null means Registry::global().
   Registry* registry = nullptr;
+  // URDF robots (io/urdf_file.hpp): folders holding the packages `package://` paths name (a
+  // package's folder itself, or the folder it sits in), the link to take as the palm (empty:
+  // the URDF's root) and the material of every link.
+  std::vector<std::filesystem::path> packagePaths;
+  std::string urdfPalm;
+  Material urdfMaterial = Material::Rubber;
 };
 
 // The folders a world's <filename> is resolved against, in order.

@@ -1,0 +1,28 @@
+#pragma once
+// The flags every command that loads files shares: --root, --generic-robots, and for URDF
+// robots --package-path and --palm.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "graspkit/io/load_options.hpp"
+
+namespace graspkit::cli {
+
+struct LoadFlags {
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  std::vector<std::filesystem::path> packagePaths;
+  std::string palm;
+
+  LoadOptions options() const;
+};
+
+// With no --root (and no GRASPKIT_ROOT or GRASPIT), an installed program's root is its own
+// models, <prefix>/share/graspkit/models.
+void addLoadFlags(CLI::App& command, LoadFlags& flags);
+
+}  // namespace graspkit::cli

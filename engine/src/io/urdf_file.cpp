@@ -1,0 +1,659 @@
+#include "graspkit/io/urdf_file.hpp"
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <urdf_parser/urdf_parser.h>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "geometry/primitive_meshes.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/log.hpp"
+#include "graspkit/mass_properties.hpp"
+#include "graspkit/mesh_loader.hpp"
+#include "graspkit/registry.hpp"
+#include "io/xml.hpp"
+#include "model/dof_ranges.hpp"
+
+namespace graspkit {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+namespace {
+
+constexpr double kMetre = 1000.0;     // mm
+constexpr double kKilogram = 1000.0;  // g
+// Torques in g mm^2/s^2 per N m, forces in g mm/s^2 per N.
+constexpr double kNewtonMetre = 1.0e9;
+constexpr double kNewton = 1.0e6;
+// Controller gains, and the effort where the URDF gives none: GraspIt!'s Barrett finger DOFs
+// for revolute joints, graspkit's parallel_jaw for prismatic ones.
+constexpr double kRevoluteKp = 1.0e11, kRevoluteKd = 1.0e7, kRevoluteEffort = 2.5e9;
+constexpr double kPrismaticKp = 1.0e9, kPrismaticKd = 1.0e6, kPrismaticEffort = 1.0e8;
+// Lines closer to parallel than this (1 - cos) share no common normal.
+constexpr double kParallel = 1e-12;
+constexpr double kSamePoint = 1e-9;  // mm
+
+Transform poseTransform(const urdf::Pose& pose) {
+  double x, y, z, w;
+  pose.rotation.getQuaternion(x, y, z, w);
+  Transform t = Transform::Identity();
+  t.linear() = Quaternion(w, x, y, z).normalized().toRotationMatrix();
+  t.translation() = kMetre * Vector3(pose.position.x, pose.position.y, pose.position.z);
+  return t;
+}
+
+Vector3 vector(const urdf::Vector3& v) {
+  return Vector3(v.x, v.y, v.z);
+}
+
+bool isMovable(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
+         joint.type == urdf::Joint::PRISMATIC;
+}
+
+// A frame whose z axis is `z` (unit) and whose x axis is as close to `hint` as z allows.
+Matrix3 frameWithZ(const Vector3& z, const Vector3& hint) {
+  Vector3 x = hint - hint.dot(z) * z;
+  if (x.norm() < 1e-6) {
+    x = Vector3::UnitY() - z.y() * z;
+    if (x.norm() < 1e-6) x = Vector3::UnitX() - z.x() * z;
+  }
+  x.normalize();
+  Matrix3 frame;
+  frame.col(0) = x;
+  frame.col(1) = z.cross(x);
+  frame.col(2) = z;
+  return frame;
+}
+
+// The DH transform's constant part for a joint at the origin of frame `before` (whose z is the
+// joint's axis) such that the frame after it has its z on the next joint's axis line (point p,
+// unit direction u), its x along the common normal. Returns the joint with theta, d, a, alpha
+// set and writes the frame after it.
+void denavitHartenbergTo(const Transform& before, const Vector3& p, const Vector3& u, Joint& joint,
+                         Transform& after) {
+  const Vector3 o = before.translation();
+  const Vector3 z = before.linear().col(2);
+  const Vector3 x_before = before.linear().col(0);
+  const Vector3 w = o - p;
+  const double b = z.dot(u);
+  const double denom = 1.0 - b * b;
+  Vector3 c1, c2, x;
+  if (denom > kParallel) {
+    const double s = (b * u.dot(w) - z.dot(w)) / denom;
+    const double t = (u.dot(w) - b * z.dot(w)) / denom;
+    c1 = o + s * z;
+    c2 = p + t * u;
+    x = (c2 - c1).norm() > kSamePoint ? Vector3((c2 - c1).normalized())
+                                      : Vector3(z.cross(u).normalized());
+  } else {
+    c1 = o;
+    c2 = p + u.dot(o - p) * u;
+    x = (c2 - c1).norm() > kSamePoint ? Vector3((c2 - c1).normalized()) : x_before;
+  }
+  joint.theta = std::atan2(x_before.cross(x).dot(z), x_before.dot(x));
+  joint.d = (c1 - o).dot(z);
+  joint.a = (c2 - c1).dot(x);
+  joint.alpha = std::atan2(z.cross(u).dot(x), z.dot(u));
+  after = before * joint.transform(0.0);
+}
+
+class UrdfReader {
+ public:
+  UrdfReader(const fs::path& file, const LoadOptions& options)
+      : file_(file), options_(options), document_(file) {}
+
+  std::shared_ptr<const RobotModel> read() {
+    const XMLElement& root = document_.root();
+    if (std::string_view(root.Name()) != "robot")
+      throw Error(xml::at(file_, root), "the root element of a URDF file must be <robot>");
+    indexElements(root);
+    checkJoints();
+    checkTree(root);
+    parse(root);
+    const std::string palm = palmLink(root);
+    auto robot = std::make_shared<RobotModel>();
+    robot->file = file_;
+    robot->name = model_->getName().empty() ? file_.stem().string() : model_->getName();
+    robot->type = "Hand";
+    robot->dbName = robot->name;
+    robot->isHand = true;
+    Registry& registry = options_.registry ? *options_.registry : Registry::global();
+    robot->robotType = registry.robotType("Hand");
+    robot->typeProvider = "URDF";
+    robot->palmFile = palm;
+    readDofs(*robot, palm);
+    robot->palm = groupBody(palm, Transform::Identity(), palm);
+    for (const urdf::JointSharedPtr& joint : childJoints(palm, true)) readChain(*joint, *robot);
+    if (robot->chains.empty())
+      throw Error(xml::at(file_, *link_elements_.at(palm)),
+                  fmt::format("no movable joint hangs on the palm '{}'", palm));
+    finishDofs(*robot);
+    robot->eigengrasps = identityEigengrasps(static_cast<int>(robot->dofs.size()));
+    return robot;
+  }
+
+ private:
+  // --- Checks on the XML, where line numbers are known -------------------------------------
+
+  void indexElements(const XMLElement& root) {
+    for (const XMLElement* e : xml::children(root, "link")) {
+      const char* name = e->Attribute("name");
+      if (!name || !*name) throw Error(xml::at(file_, *e), "a <link> needs a name");
+      if (!link_elements_.emplace(name, e).second)
+        throw Error(xml::at(file_, *e), fmt::format("a second link named '{}'", name));
+    }
+    for (const XMLElement* e : xml::children(root, "joint")) {
+      const char* name = e->Attribute("name");
+      if (!name || !*name) throw Error(xml::at(file_, *e), "a <joint> needs a name");
+      if (!joint_elements_.emplace(name, e).second)
+        throw Error(xml::at(file_, *e), fmt::format("a second joint named '{}'", name));
+      joint_order_.push_back(name);
+    }
+    if (link_elements_.empty()) throw Error(xml::at(file_, root), "a URDF robot needs a <link>");
+  }
+
+  // Numbers in an attribute: all finite, `count` of them.
+  std::vector<double> finiteNumbers(const XMLElement& element, const char* attribute,
+                                    std::size_t count) {
+    const char* text = element.Attribute(attribute);
+    if (!text) return {};
+    std::vector<double> values;
+    for (std::string_view token : xml::tokens(text)) {
+      const auto value = xml::toDouble(token);
+      if (!value || !std::isfinite(*value))
+        throw Error(xml::at(file_, element),
+                    fmt::format("{}=\"{}\": '{}' is not a finite number", attribute, text, token));
+      values.push_back(*value);
+    }
+    if (values.size() != count)
+      throw Error(xml::at(file_, element),
+                  fmt::format("{}=\"{}\" needs {} numbers", attribute, text, count));
+    return values;
+  }
+
+  void checkJoints() {
+    for (const auto& [name, e] : joint_elements_) {
+      const char* type = e->Attribute("type");
+      const std::string_view t = type ? type : "";
+      if (t == "floating" || t == "planar")
+        throw Error(xml::at(file_, *e),
+                    fmt::format("joint '{}': {} joints are not supported (a hand's joints are "
+                                "revolute, continuous, prismatic or fixed)",
+                                name, t));
+      if (t != "revolute" && t != "continuous" && t != "prismatic" && t != "fixed")
+        throw Error(xml::at(file_, *e), fmt::format("joint '{}': unknown type '{}'", name, t));
+      for (const char* end : {"parent", "child"}) {
+        const XMLElement* link = e->FirstChildElement(end);
+        const char* link_name = link ? link->Attribute("link") : nullptr;
+        if (!link_name)
+          throw Error(xml::at(file_, *e), fmt::format("joint '{}' needs <{} link=...>", name, end));
+        if (!link_elements_.count(link_name))
+          throw Error(xml::at(file_, *link),
+                      fmt::format("joint '{}': no link named '{}'", name, link_name));
+      }
+      if (const XMLElement* origin = e->FirstChildElement("origin")) {
+        finiteNumbers(*origin, "xyz", 3);
+        finiteNumbers(*origin, "rpy", 3);
+      }
+      if (const XMLElement* axis = e->FirstChildElement("axis")) {
+        const std::vector<double> xyz = finiteNumbers(*axis, "xyz", 3);
+        if (!xyz.empty() && Vector3(xyz[0], xyz[1], xyz[2]).norm() < 1e-9)
+          throw Error(xml::at(file_, *axis), fmt::format("joint '{}': the axis is zero", name));
+      }
+      const XMLElement* limit = e->FirstChildElement("limit");
+      if ((t == "revolute" || t == "prismatic") && !limit)
+        throw Error(xml::at(file_, *e),
+                    fmt::format("joint '{}': a {} joint needs <limit>", name, t));
+      if (limit) {
+        for (const char* attribute : {"lower", "upper", "effort", "velocity"})
+          finiteNumbers(*limit, attribute, 1);
+        for (const char* attribute : {"effort", "velocity"})
+          if (!limit->Attribute(attribute))
+            throw Error(xml::at(file_, *limit),
+                        fmt::format("joint '{}': <limit> needs {}=", name, attribute));
+        const double lower = limit->DoubleAttribute("lower", 0.0);
+        const double upper = limit->DoubleAttribute("upper", 0.0);
+        if (t != "continuous" && lower > upper)
+          throw Error(xml::at(file_, *limit),
+                      fmt::format("joint '{}': lower limit {} above upper {}", name, lower, upper));
+      }
+      if (const XMLElement* mimic = e->FirstChildElement("mimic")) {
+        const char* target = mimic->Attribute("joint");
+        if (!target || !joint_elements_.count(target))
+          throw Error(xml::at(file_, *mimic),
+                      fmt::format("joint '{}' mimics '{}', which is not a joint of the file", name,
+                                  target ? target : ""));
+        finiteNumbers(*mimic, "multiplier", 1);
+        finiteNumbers(*mimic, "offset", 1);
+      }
+    }
+    // Mimic chains end at a joint that mimics nothing.
+    for (const auto& [name, e] : joint_elements_) {
+      std::set<std::string> seen{name};
+      for (std::string at = name;;) {
+        const XMLElement* mimic = joint_elements_.at(at)->FirstChildElement("mimic");
+        if (!mimic) break;
+        at = mimic->Attribute("joint");
+        if (!seen.insert(at).second)
+          throw Error(xml::at(file_, *mimic),
+                      fmt::format("joint '{}': its mimic joints form a loop", name));
+      }
+    }
+  }
+
+  // One parent per link, and no cycle: a tree.
+  void checkTree(const XMLElement& root) {
+    std::map<std::string, std::string> parent_joint;
+    for (const auto& name : joint_order_) {
+      const XMLElement& e = *joint_elements_.at(name);
+      const std::string child = e.FirstChildElement("child")->Attribute("link");
+      const auto [it, fresh] = parent_joint.emplace(child, name);
+      if (!fresh)
+        throw Error(xml::at(file_, e), fmt::format("link '{}' is the child of joints '{}' and '{}'",
+                                                   child, it->second, name));
+    }
+    for (const auto& [link, joint] : parent_joint) {
+      std::set<std::string> seen{link};
+      for (auto at = parent_joint.find(link); at != parent_joint.end();) {
+        const std::string parent =
+            joint_elements_.at(at->second)->FirstChildElement("parent")->Attribute("link");
+        if (!seen.insert(parent).second)
+          throw Error(
+              xml::at(file_, *joint_elements_.at(at->second)),
+              fmt::format("joint '{}' closes a cycle through link '{}'", at->second, parent));
+        at = parent_joint.find(parent);
+      }
+    }
+    std::vector<std::string> roots;
+    for (const auto& [name, e] : link_elements_)
+      if (!parent_joint.count(name)) roots.push_back(name);
+    if (roots.size() > 1)
+      throw Error(xml::at(file_, root),
+                  fmt::format("the links form {} trees (roots '{}' and '{}'): a robot is one tree",
+                              roots.size(), roots[0], roots[1]));
+  }
+
+  void parse(const XMLElement& root) {
+    std::ifstream in(file_, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    model_ = urdf::parseURDF(text.str());
+    if (!model_) throw Error(xml::at(file_, root), "urdfdom could not read the robot");
+  }
+
+  std::string palmLink(const XMLElement& root) const {
+    if (options_.urdfPalm.empty()) return model_->getRoot()->name;
+    if (!link_elements_.count(options_.urdfPalm))
+      throw Error(xml::at(file_, root),
+                  fmt::format("palm '{}': the file has no link of that name", options_.urdfPalm));
+    return options_.urdfPalm;
+  }
+
+  // --- The model ------------------------------------------------------------------------------
+
+  const urdf::Joint& joint(const std::string& name) const { return *model_->joints_.at(name); }
+
+  // The joints whose parent is `link` (file order), movable or fixed.
+  std::vector<urdf::JointSharedPtr> jointsBelow(const std::string& link) const {
+    std::vector<urdf::JointSharedPtr> out;
+    for (const std::string& name : joint_order_) {
+      const urdf::JointSharedPtr& j = model_->joints_.at(name);
+      if (j->parent_link_name == link) out.push_back(j);
+    }
+    return out;
+  }
+
+  // The links rigidly attached to `link` by fixed joints (itself included), with their frames
+  // in `link`'s frame.
+  std::vector<std::pair<std::string, Transform>> rigidGroup(const std::string& link) const {
+    std::vector<std::pair<std::string, Transform>> group{{link, Transform::Identity()}};
+    for (std::size_t i = 0; i < group.size(); ++i) {
+      for (const urdf::JointSharedPtr& j : jointsBelow(group[i].first)) {
+        if (j->type != urdf::Joint::FIXED) continue;
+        group.emplace_back(j->child_link_name,
+                           group[i].second * poseTransform(j->parent_to_joint_origin_transform));
+      }
+    }
+    return group;
+  }
+
+  // The movable joints hung on `link`'s rigid group, with the frame of each joint's parent link
+  // in `link`'s frame.
+  std::vector<urdf::JointSharedPtr> childJoints(const std::string& link, bool /*palm*/) const {
+    std::vector<urdf::JointSharedPtr> out;
+    for (const auto& [member, frame] : rigidGroup(link))
+      for (const urdf::JointSharedPtr& j : jointsBelow(member))
+        if (isMovable(*j)) out.push_back(j);
+    return out;
+  }
+
+  Transform memberFrame(const std::string& group_link, const std::string& member) const {
+    for (const auto& [name, frame] : rigidGroup(group_link))
+      if (name == member) return frame;
+    return Transform::Identity();
+  }
+
+  // The joints below `palm`, in file order.
+  std::set<std::string> jointsUnder(const std::string& palm) const {
+    std::set<std::string> out;
+    std::vector<std::string> links{palm};
+    while (!links.empty()) {
+      const std::string link = links.back();
+      links.pop_back();
+      for (const urdf::JointSharedPtr& j : jointsBelow(link)) {
+        out.insert(j->name);
+        links.push_back(j->child_link_name);
+      }
+    }
+    return out;
+  }
+
+  void readDofs(RobotModel& robot, const std::string& palm) {
+    const std::set<std::string> under = jointsUnder(palm);
+    for (const std::string& name : joint_order_) {
+      const urdf::Joint& j = joint(name);
+      if (!isMovable(j) || j.mimic || !under.count(name)) continue;
+      dof_of_[name] = static_cast<int>(robot.dofs.size());
+      Dof dof;
+      dof.type = DofType::Rigid;
+      // Closing speeds as GraspIt!'s hands give them: the Barrett's 1 rad/s, parallel_jaw's
+      // 10 mm/s.
+      dof.defaultVelocity = j.type == urdf::Joint::PRISMATIC ? 10.0 : 1.0;
+      const bool prismatic = j.type == urdf::Joint::PRISMATIC;
+      dof.Kp = prismatic ? kPrismaticKp : kRevoluteKp;
+      dof.Kd = prismatic ? kPrismaticKd : kRevoluteKd;
+      const double effort = j.limits ? j.limits->effort : 0.0;
+      dof.maxEffort = effort > 0.0 ? effort * (prismatic ? kNewton : kNewtonMetre)
+                                   : (prismatic ? kPrismaticEffort : kRevoluteEffort);
+      robot.dofs.push_back(dof);
+    }
+  }
+
+  // A mimic joint's DOF, multiplier and offset, following mimics of mimics.
+  struct Drive {
+    int dof = 0;
+    double ratio = 1.0;
+    double offset = 0.0;  // URDF units
+  };
+  Drive drive(const urdf::Joint& j) const {
+    if (!j.mimic) {
+      const auto dof = dof_of_.find(j.name);
+      if (dof == dof_of_.end())
+        throw Error(xml::at(file_, *joint_elements_.at(j.name)),
+                    fmt::format("joint '{}' is mimicked below the palm but lies above it", j.name));
+      return {dof->second, 1.0, 0.0};
+    }
+    const Drive target = drive(joint(j.mimic->joint_name));
+    return {target.dof, j.mimic->multiplier * target.ratio,
+            j.mimic->multiplier * target.offset + j.mimic->offset};
+  }
+
+  void readChain(const urdf::Joint& first, RobotModel& robot) {
+    // The chain's joints, each with its parent link's frame at the zero joint vector (palm
+    // frame) and its child link's.
+    std::vector<const urdf::Joint*> joints;
+    std::vector<Transform> child_frames;  // URDF frame of each joint's child link, q = 0
+    std::vector<Vector3> points, axes;
+    Transform group_frame = Transform::Identity();  // the palm's, then each link group's
+    std::string group = robot.palmFile;
+    for (const urdf::Joint* j = &first; j;) {
+      const Transform parent = group_frame * memberFrame(group, j->parent_link_name);
+      const Transform at_joint = parent * poseTransform(j->parent_to_joint_origin_transform);
+      joints.push_back(j);
+      child_frames.push_back(at_joint);
+      points.push_back(at_joint.translation());
+      axes.push_back((at_joint.linear() * vector(j->axis)).normalized());
+      group = j->child_link_name;
+      group_frame = at_joint;
+      const std::vector<urdf::JointSharedPtr> next = childJoints(group, false);
+      if (next.size() > 1)
+        throw Error(xml::at(file_, *link_elements_.at(group)),
+                    fmt::format("the robot branches below the palm at link '{}' (joints '{}' and "
+                                "'{}'); graspkit's chains do not branch: take that link as the "
+                                "palm (--palm {})",
+                                group, next[0]->name, next[1]->name, group));
+      j = next.empty() ? nullptr : next.front().get();
+    }
+
+    KinematicChain chain;
+    chain.firstJoint = robot.jointCount();
+    Transform before = Transform::Identity();
+    before.linear() = frameWithZ(axes[0], Vector3::UnitX());
+    before.translation() = points[0];
+    chain.base = before;
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const urdf::Joint& j = *joints[i];
+      Joint dh;
+      dh.type = j.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
+      Transform after;
+      if (i + 1 < joints.size()) {
+        denavitHartenbergTo(before, points[i + 1], axes[i + 1], dh, after);
+      } else {
+        after = before * dh.transform(0.0);
+      }
+      const Drive d = drive(j);
+      dh.dof = d.dof;
+      dh.ratio = d.ratio;
+      const double unit = dh.type == JointType::Prismatic ? kMetre : 1.0;
+      // URDF: q = ratio * DOF + offset; graspkit: value = ratio * DOF, the offset in the DH
+      // parameter the joint drives.
+      (dh.type == JointType::Prismatic ? dh.d : dh.theta) += d.offset * unit;
+      if (j.type == urdf::Joint::CONTINUOUS) {
+        dh.min = -M_PI;
+        dh.max = M_PI;
+      } else {
+        dh.min = (j.limits->lower - d.offset) * unit;
+        dh.max = (j.limits->upper - d.offset) * unit;
+      }
+      if (j.dynamics) {
+        dh.viscousFriction = j.dynamics->damping *
+                             (dh.type == JointType::Prismatic ? kNewton / kMetre : kNewtonMetre);
+        dh.coulombFriction =
+            j.dynamics->friction * (dh.type == JointType::Prismatic ? kNewton : kNewtonMetre);
+      }
+      // The link rides on the frame after the joint and keeps its URDF frame, a constant
+      // transform from it (both turn with the joint).
+      Link link;
+      link.name = j.child_link_name;
+      link.file = j.child_link_name;
+      link.jointType = dh.type == JointType::Prismatic ? DynamicJointType::Prismatic
+                                                       : DynamicJointType::Revolute;
+      link.lastJoint = static_cast<int>(i);
+      link.frame = after.inverse() * child_frames[i];
+      link.body = groupBody(j.child_link_name, Transform::Identity(), j.child_link_name);
+      chain.joints.push_back(dh);
+      chain.links.push_back(std::move(link));
+      before = after;
+    }
+    robot.chains.push_back(std::move(chain));
+  }
+
+  void finishDofs(RobotModel& robot) {
+    model::gatherDofJoints(robot);
+    for (std::size_t d = 0; d < robot.dofs.size(); ++d) {
+      Dof& dof = robot.dofs[d];
+      if (dof.joints.empty()) {  // a joint below a link the palm does not reach
+        dof.min = dof.max = 0.0;
+      } else if (dof.min > dof.max) {
+        throw Error(xml::at(file_, document_.root()),
+                    fmt::format("DOF {} has an empty range: the limits of the joints that "
+                                "mimic each other do not overlap",
+                                d));
+      }
+      dof.defaultValue = dof.clamp(0.0);
+    }
+  }
+
+  // --- Bodies ---------------------------------------------------------------------------------
+
+  // The body of `link` and the links fixed to it, in the frame `to_body` * (link frame).
+  std::shared_ptr<const BodyModel> groupBody(const std::string& link, const Transform& to_body,
+                                             const std::string& name) {
+    auto body = std::make_shared<BodyModel>();
+    body->name = name;
+    body->file = file_;
+    body->material = options_.urdfMaterial;
+    TriangleMesh mesh;
+    double mass = 0.0;
+    Vector3 moment = Vector3::Zero();   // sum of m * c
+    Matrix3 inertia = Matrix3::Zero();  // about the body origin, g mm^2
+    bool has_inertial = false;
+    for (const auto& [member, frame] : rigidGroup(link)) {
+      const Transform placed = to_body * frame;
+      appendGeometry(member, placed, mesh, *body);
+      const urdf::LinkConstSharedPtr l = model_->getLink(member);
+      if (!l->inertial || l->inertial->mass <= 0.0) continue;
+      has_inertial = true;
+      const urdf::Inertial& in = *l->inertial;
+      const Transform at = placed * poseTransform(in.origin);
+      const double m = in.mass * kKilogram;
+      Matrix3 local;
+      local << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+      local *= kKilogram * kMetre * kMetre;  // kg m^2 -> g mm^2
+      const Vector3 c = at.translation();
+      // Parallel axes: about the body origin.
+      inertia += at.linear() * local * at.linear().transpose() +
+                 m * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose());
+      mass += m;
+      moment += m * c;
+    }
+    body->mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+    const MassProperties geometry = computeMassProperties(*body->mesh);
+    if (has_inertial) {
+      body->mass = mass;
+      body->cog = moment / mass;
+      const Vector3 c = body->cog;
+      body->inertia =
+          (inertia - mass * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose())) / mass;
+      body->massFromFile = body->cogFromFile = body->inertiaFromFile = true;
+    } else {
+      body->mass = kDefaultMass;
+      body->cog = geometry.valid ? geometry.centroid : surfaceCentroid(*body->mesh);
+      body->inertia = geometry.valid ? geometry.inertia : Matrix3::Identity();
+      body->inertiaFallback = !geometry.valid;
+    }
+    body->maxRadius = maxRadius(*body->mesh, body->cog);
+    return body;
+  }
+
+  void appendGeometry(const std::string& link, const Transform& placed, TriangleMesh& mesh,
+                      BodyModel& body) {
+    const urdf::LinkConstSharedPtr l = model_->getLink(link);
+    std::vector<std::pair<urdf::GeometrySharedPtr, urdf::Pose>> shapes;
+    for (const auto& c : l->collision_array)
+      if (c && c->geometry) shapes.emplace_back(c->geometry, c->origin);
+    if (shapes.empty()) {
+      for (const auto& v : l->visual_array)
+        if (v && v->geometry) shapes.emplace_back(v->geometry, v->origin);
+    }
+    for (const auto& [geometry, origin] : shapes) {
+      TriangleMesh part = shapeMesh(link, *geometry, body);
+      transformMesh(part, Eigen::Affine3d((placed * poseTransform(origin)).matrix()));
+      const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
+      mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
+      for (const auto& t : part.triangles)
+        mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+  }
+
+  TriangleMesh shapeMesh(const std::string& link, const urdf::Geometry& geometry, BodyModel& body) {
+    const XMLElement& where = *link_elements_.at(link);
+    switch (geometry.type) {
+      case urdf::Geometry::BOX: {
+        const auto& box = static_cast<const urdf::Box&>(geometry);
+        return geometry::boxMesh(kMetre * vector(box.dim));
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& c = static_cast<const urdf::Cylinder&>(geometry);
+        return geometry::cylinderMesh(kMetre * c.radius, kMetre * c.length);
+      }
+      case urdf::Geometry::SPHERE:
+        return geometry::sphereMesh(kMetre * static_cast<const urdf::Sphere&>(geometry).radius);
+      case urdf::Geometry::MESH:
+        break;
+    }
+    const auto& m = static_cast<const urdf::Mesh&>(geometry);
+    const fs::path path = meshPath(where, m.filename);
+    TriangleMesh mesh;
+    try {
+      mesh = loadMesh(path);
+    } catch (const Error& e) {
+      throw Error(xml::at(file_, where), fmt::format("link '{}': {}", link, e.what()));
+    }
+    if (body.geometryFile.empty()) body.geometryFile = path;
+    const Vector3 scale = kMetre * vector(m.scale);
+    Eigen::Affine3d scaling = Eigen::Affine3d::Identity();
+    scaling.linear() = scale.asDiagonal();
+    transformMesh(mesh, scaling);
+    return mesh;
+  }
+
+  // Where a URDF mesh filename points: package://NAME/REST in a package folder, file://PATH,
+  // or a path relative to the URDF's folder.
+  fs::path meshPath(const XMLElement& where, const std::string& filename) const {
+    constexpr std::string_view kPackage = "package://", kFile = "file://";
+    if (filename.rfind(kFile, 0) == 0) return existing(where, filename.substr(kFile.size()));
+    if (filename.rfind(kPackage, 0) != 0) return existing(where, file_.parent_path() / filename);
+    const std::string rest = filename.substr(kPackage.size());
+    const std::size_t slash = rest.find('/');
+    const std::string package = rest.substr(0, slash);
+    const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
+    std::vector<fs::path> candidates;
+    for (const fs::path& folder : options_.packagePaths) {
+      candidates.push_back(folder / package / inside);
+      if (folder.filename() == package) candidates.push_back(folder / inside);
+    }
+    for (fs::path up = fs::absolute(file_).parent_path();; up = up.parent_path()) {
+      if (up.filename() == package) candidates.push_back(up / inside);
+      candidates.push_back(up / package / inside);
+      if (up == up.parent_path()) break;
+    }
+    std::error_code ec;
+    for (const fs::path& candidate : candidates)
+      if (fs::is_regular_file(candidate, ec)) return candidate;
+    throw Error(xml::at(file_, where),
+                fmt::format("mesh '{}': package '{}' not found (add its folder with "
+                            "--package-path)",
+                            filename, package));
+  }
+
+  fs::path existing(const XMLElement& where, const fs::path& path) const {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+      throw Error(xml::at(file_, where), fmt::format("mesh '{}' does not exist", path.string()));
+    return path;
+  }
+
+  fs::path file_;
+  const LoadOptions& options_;
+  xml::Document document_;
+  std::map<std::string, const XMLElement*> link_elements_;
+  std::map<std::string, const XMLElement*> joint_elements_;
+  std::vector<std::string> joint_order_;
+  urdf::ModelInterfaceSharedPtr model_;
+  std::map<std::string, int> dof_of_;
+};
+
+}  // namespace
+
+bool isUrdfFile(const fs::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".urdf";
+}
+
+std::shared_ptr<const RobotModel> loadUrdfFile(const fs::path& file, const LoadOptions& options) {
+  return UrdfReader(file, options).read();
+}
+
+}  // namespace graspkit
