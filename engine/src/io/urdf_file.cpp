@@ -287,8 +287,15 @@ class UrdfReader {
     std::ifstream in(file_, std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
-    model_ = urdf::parseURDF(text.str());
-    if (!model_) throw Error(xml::at(file_, root), "urdfdom could not read the robot");
+    try {
+      model_ = urdf::parseURDF(text.str());
+    } catch (const std::exception& e) {  // urdfdom throws for numbers it cannot read
+      throw Error(xml::at(file_, root),
+                  fmt::format("urdfdom could not read the robot: {}", e.what()));
+    }
+    if (!model_)
+      throw Error(xml::at(file_, root),
+                  "urdfdom could not read the robot (its messages above say why)");
   }
 
   std::string palmLink(const XMLElement& root) const {
