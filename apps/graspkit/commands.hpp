@@ -92,7 +92,9 @@ int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& 
 
 struct ConvertOptions {
   std::filesystem::path input;
-  std::filesystem::path out;  // beside the input, .xml, when empty
+  std::filesystem::path out;  // beside the input, .xml, when empty; a folder with --to
+  std::string to;             // robots: the format to write (urdf)
+  LoadFlags load;             // robots: how to read the input
   bool force = false;
   std::string material = "plastic";
   double mass = 300.0;

@@ -11,6 +11,8 @@
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/legacy_files.hpp"
 #include "graspkit/io/output_file.hpp"
+#include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/urdf_file.hpp"
 #include "graspkit/material.hpp"
 #include "graspkit/mesh_loader.hpp"
 
@@ -55,11 +57,18 @@ std::string existingText(const fs::path& file) {
 void addConvertCommand(CLI::App& app, ConvertOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Turn a legacy .egr or .vgr file into its XML form, or a mesh into a Body XML beside it");
-  cmd->add_option("input", options.input, ".egr, .vgr or mesh file")
+      "Turn a legacy .egr or .vgr file into its XML form, a mesh into a Body XML beside it, or a "
+      "robot (GraspIt! XML or URDF) into URDF");
+  cmd->add_option("input", options.input, ".egr, .vgr, mesh or robot file")
       ->required()
       ->check(existingFile());
-  cmd->add_option("-o,--out", options.out, "Where to write (default: beside the input, .xml)");
+  cmd->add_option("-o,--out", options.out,
+                  "Where to write (default: beside the input, .xml); with --to, a folder");
+  cmd->add_option("--to", options.to,
+                  "Robots: write this format into the --out folder (urdf: the .urdf and its "
+                  "meshes as STL)")
+      ->check(CLI::IsMember({"urdf"}));
+  addLoadFlags(*cmd, options.load);
   cmd->add_flag("--force", options.force, "Replace an existing file that differs");
   cmd->add_option("--material", options.material, "Mesh: the body's material")
       ->default_val("plastic");
@@ -68,6 +77,14 @@ void addConvertCommand(CLI::App& app, ConvertOptions& options) {
 }
 
 int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
+  if (!options.to.empty()) {
+    if (options.out.empty())
+      throw Error("--to " + options.to + " needs --out FOLDER to write into");
+    const auto robot = loadRobotFile(options.input, options.load.options());
+    const fs::path written = saveUrdf(*robot, options.out);
+    if (!quiet) out << fmt::format("wrote {}\n", written.string());
+    return 0;
+  }
   const fs::path target =
       options.out.empty() ? fs::path(options.input).replace_extension(".xml") : options.out;
   std::error_code ec;

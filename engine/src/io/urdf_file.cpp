@@ -133,7 +133,12 @@ class UrdfReader {
     robot->palmFile = palm;
     readDofs(*robot, palm);
     robot->palm = groupBody(palm, Transform::Identity(), palm);
-    for (const urdf::JointSharedPtr& joint : childJoints(palm, true)) readChain(*joint, *robot);
+    // Chains in the order their first links come in the file.
+    std::vector<urdf::JointSharedPtr> firsts = childJoints(palm, true);
+    std::stable_sort(firsts.begin(), firsts.end(), [&](const auto& a, const auto& b) {
+      return link_order_.at(a->child_link_name) < link_order_.at(b->child_link_name);
+    });
+    for (const urdf::JointSharedPtr& joint : firsts) readChain(*joint, *robot);
     if (robot->chains.empty())
       throw Error(xml::at(file_, *link_elements_.at(palm)),
                   fmt::format("no movable joint hangs on the palm '{}'", palm));
@@ -151,6 +156,7 @@ class UrdfReader {
       if (!name || !*name) throw Error(xml::at(file_, *e), "a <link> needs a name");
       if (!link_elements_.emplace(name, e).second)
         throw Error(xml::at(file_, *e), fmt::format("a second link named '{}'", name));
+      link_order_.emplace(name, static_cast<int>(link_order_.size()));
     }
     for (const XMLElement* e : xml::children(root, "joint")) {
       const char* name = e->Attribute("name");
@@ -434,6 +440,7 @@ class UrdfReader {
 
     KinematicChain chain;
     chain.firstJoint = robot.jointCount();
+    int consumed = 0;  // joints since the last link
     Transform before = Transform::Identity();
     before.linear() = frameWithZ(axes[0], Vector3::UnitX());
     before.translation() = points[0];
@@ -468,21 +475,43 @@ class UrdfReader {
         dh.coulombFriction =
             j.dynamics->friction * (dh.type == JointType::Prismatic ? kNewton : kNewtonMetre);
       }
+      chain.joints.push_back(dh);
+      before = after;
       // The link rides on the frame after the joint and keeps its URDF frame, a constant
       // transform from it (both turn with the joint).
+      ++consumed;
+      const std::string carrier = carrierLink(j.child_link_name);
+      if (carrier.empty()) continue;  // an empty frame: the next link takes this joint too
+      const Transform carrier_frame = memberFrame(j.child_link_name, carrier);
       Link link;
-      link.name = j.child_link_name;
-      link.file = j.child_link_name;
-      link.jointType = dh.type == JointType::Prismatic ? DynamicJointType::Prismatic
-                                                       : DynamicJointType::Revolute;
+      link.name = carrier;
+      link.file = carrier;
+      link.jointType = consumed == 2                     ? DynamicJointType::Universal
+                       : consumed >= 3                   ? DynamicJointType::Ball
+                       : dh.type == JointType::Prismatic ? DynamicJointType::Prismatic
+                                                         : DynamicJointType::Revolute;
       link.lastJoint = static_cast<int>(i);
-      link.frame = after.inverse() * child_frames[i];
-      link.body = groupBody(j.child_link_name, Transform::Identity(), j.child_link_name);
-      chain.joints.push_back(dh);
+      link.frame = after.inverse() * child_frames[i] * carrier_frame;
+      link.body = groupBody(j.child_link_name, carrier_frame.inverse(), carrier);
       chain.links.push_back(std::move(link));
-      before = after;
+      consumed = 0;
     }
     robot.chains.push_back(std::move(chain));
+  }
+
+  // Whether a link has geometry or mass of its own.
+  bool hasBody(const std::string& link) const {
+    const urdf::LinkConstSharedPtr l = model_->getLink(link);
+    return !l->collision_array.empty() || !l->visual_array.empty() ||
+           (l->inertial && l->inertial->mass > 0.0);
+  }
+
+  // The link whose frame a rigid group takes: its first link, unless that is an empty frame;
+  // then the first link fixed to it that has a body. Empty when none has.
+  std::string carrierLink(const std::string& group) const {
+    for (const auto& [member, frame] : rigidGroup(group))
+      if (hasBody(member)) return member;
+    return "";
   }
 
   void finishDofs(RobotModel& robot) {
@@ -645,6 +674,7 @@ class UrdfReader {
   const LoadOptions& options_;
   xml::Document document_;
   std::map<std::string, const XMLElement*> link_elements_;
+  std::map<std::string, int> link_order_;
   std::map<std::string, const XMLElement*> joint_elements_;
   std::vector<std::string> joint_order_;
   urdf::ModelInterfaceSharedPtr model_;

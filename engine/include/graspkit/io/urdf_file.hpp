@@ -2,13 +2,18 @@
 // URDF robots, read through urdfdom, as graspkit robots (a generic Hand).
 //
 // - The palm is LoadOptions::urdfPalm, else the URDF's root link. Links hung on it by fixed
-//   joints are part of it; each movable joint hung on it starts a chain, which follows the
-//   movable joints below (links on fixed joints join the link before). A chain that branches
-//   below the palm is an error naming the link: pick that link as the palm.
+//   joints are part of it; each movable joint hung on it starts a chain (chains in the order
+//   of their first links in the file), which follows the movable joints below (links on fixed
+//   joints join the link before). A chain that branches below the palm is an error naming the
+//   link: pick that link as the palm.
 // - Revolute, continuous (a range of +-pi) and prismatic joints become DH joints: each chain's
 //   joint axes are turned into Denavit-Hartenberg frames at the zero joint vector, and each
 //   link keeps its URDF frame as a constant Link::frame on its DH frame, so link poses are the
 //   URDF's link frames at every joint vector. Floating and planar joints are refused.
+// - A link with no geometry and no <inertial> (an empty frame) hung by fixed joints on links
+//   that have them takes the frame of the first of those; a joint that carries only empty
+//   links gives no link of its own, and the next link takes its joint too (a Universal link:
+//   two joints, a Ball: three), as GraspIt!'s links do.
 // - Every joint that mimics no other is a DOF; a mimic joint is coupled to its joint's DOF
 //   (value = multiplier * DOF + offset, GraspIt!'s `d#*k+c`).
 // - Geometry: every <collision> of a link, or its <visual>s where it has none; meshes (STL,
@@ -36,5 +41,14 @@ bool isUrdfFile(const std::filesystem::path& file);
 
 std::shared_ptr<const RobotModel> loadUrdfFile(const std::filesystem::path& file,
                                                const LoadOptions& options = {});
+
+// Writes `robot` as FOLDER/<name>.urdf with its link meshes as binary STL in FOLDER/meshes
+// (metres, kilograms), and returns the URDF's path. Each DH joint becomes a movable joint onto
+// an empty link on its axis and a fixed joint to its link, whose URDF frame is the link's
+// graspkit frame; a DOF's first joint carries it (DOFs in order) and the DOF's other joints
+// mimic it. Read back, the robot has the same DOFs (a DOF's value scaled by its first joint's
+// coupling ratio), links, link poses and triangles. Materials, controller gains, breakaway and
+// the robot type's own behaviour have no URDF form and are not written.
+std::filesystem::path saveUrdf(const RobotModel& robot, const std::filesystem::path& folder);
 
 }  // namespace graspkit
