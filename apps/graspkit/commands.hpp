@@ -93,7 +93,7 @@ int runTest(const TestOptions& options, bool quiet, bool verbose, std::ostream& 
 struct ConvertOptions {
   std::filesystem::path input;
   std::filesystem::path out;  // beside the input, .xml, when empty; a folder with --to
-  std::string to;             // robots: the format to write (urdf)
+  std::string to;             // robots: the format to write (urdf, mjcf)
   LoadFlags load;             // robots: how to read the input
   bool force = false;
   std::string material = "plastic";

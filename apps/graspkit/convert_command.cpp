@@ -10,6 +10,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
 #include "graspkit/io/legacy_files.hpp"
+#include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
@@ -65,9 +66,9 @@ void addConvertCommand(CLI::App& app, ConvertOptions& options) {
   cmd->add_option("-o,--out", options.out,
                   "Where to write (default: beside the input, .xml); with --to, a folder");
   cmd->add_option("--to", options.to,
-                  "Robots: write this format into the --out folder (urdf: the .urdf and its "
-                  "meshes as STL)")
-      ->check(CLI::IsMember({"urdf"}));
+                  "Robots: write this format into the --out folder (urdf: the .urdf, mjcf: "
+                  "MuJoCo's XML; meshes as STL beside it)")
+      ->check(CLI::IsMember({"urdf", "mjcf"}));
   addLoadFlags(*cmd, options.load);
   cmd->add_flag("--force", options.force, "Replace an existing file that differs");
   cmd->add_option("--material", options.material, "Mesh: the body's material")
@@ -81,7 +82,8 @@ int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
     if (options.out.empty())
       throw Error("--to " + options.to + " needs --out FOLDER to write into");
     const auto robot = loadRobotFile(options.input, options.load.options());
-    const fs::path written = saveUrdf(*robot, options.out);
+    const fs::path written =
+        options.to == "mjcf" ? saveMjcf(*robot, options.out) : saveUrdf(*robot, options.out);
     if (!quiet) out << fmt::format("wrote {}\n", written.string());
     return 0;
   }

@@ -19,6 +19,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
+#include "io/stl_bytes.hpp"
 
 namespace graspkit {
 
@@ -48,30 +49,6 @@ std::string originAttributes(const Transform& t) {
   const Vector3 p = t.translation() / kMetre;
   return fmt::format("xyz=\"{} {} {}\" rpy=\"{} {} {}\"", number(p.x()), number(p.y()),
                      number(p.z()), number(roll), number(pitch), number(yaw));
-}
-
-// Binary STL, metres.
-std::string stlBytes(const TriangleMesh& mesh) {
-  std::string bytes(80, '\0');
-  const auto count = static_cast<std::uint32_t>(mesh.triangles.size());
-  bytes.append(reinterpret_cast<const char*>(&count), 4);
-  for (const auto& t : mesh.triangles) {
-    const Vector3& a = mesh.vertices[t[0]];
-    const Vector3& b = mesh.vertices[t[1]];
-    const Vector3& c = mesh.vertices[t[2]];
-    Vector3 n = (b - a).cross(c - a);
-    if (n.norm() > 0) n.normalize();
-    float values[12];
-    for (int k = 0; k < 3; ++k) {
-      values[k] = static_cast<float>(n[k]);
-      values[3 + k] = static_cast<float>(a[k] / kMetre);
-      values[6 + k] = static_cast<float>(b[k] / kMetre);
-      values[9 + k] = static_cast<float>(c[k] / kMetre);
-    }
-    bytes.append(reinterpret_cast<const char*>(values), sizeof(values));
-    bytes.append(2, '\0');
-  }
-  return bytes;
 }
 
 class UrdfWriter {
@@ -112,7 +89,7 @@ class UrdfWriter {
     links_ << fmt::format("  <link name=\"{}\">\n", link_name);
     if (body && body->mesh && !body->mesh->empty()) {
       const std::string mesh = fmt::format("meshes/{}.stl", link_name);
-      writeFileAtomically(folder_ / mesh, stlBytes(*body->mesh));
+      writeFileAtomically(folder_ / mesh, io::stlBytes(*body->mesh));
       links_ << fmt::format(
           "    <visual><geometry><mesh filename=\"{0}\"/></geometry></visual>\n"
           "    <collision><geometry><mesh filename=\"{0}\"/></geometry></collision>\n",
