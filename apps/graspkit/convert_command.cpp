@@ -67,8 +67,9 @@ void addConvertCommand(CLI::App& app, ConvertOptions& options) {
                   "Where to write (default: beside the input, .xml); with --to, a folder");
   cmd->add_option("--to", options.to,
                   "Robots: write this format into the --out folder (urdf: the .urdf, mjcf: "
-                  "MuJoCo's XML; meshes as STL beside it)")
-      ->check(CLI::IsMember({"urdf", "mjcf"}));
+                  "MuJoCo's XML, meshes as STL beside them; graspit: GraspIt! XML with body "
+                  "files and OFF meshes in iv/)")
+      ->check(CLI::IsMember({"urdf", "mjcf", "graspit"}));
   addLoadFlags(*cmd, options.load);
   cmd->add_flag("--force", options.force, "Replace an existing file that differs");
   cmd->add_option("--material", options.material, "Mesh: the body's material")
@@ -82,8 +83,9 @@ int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
     if (options.out.empty())
       throw Error("--to " + options.to + " needs --out FOLDER to write into");
     const auto robot = loadRobotFile(options.input, options.load.options());
-    const fs::path written =
-        options.to == "mjcf" ? saveMjcf(*robot, options.out) : saveUrdf(*robot, options.out);
+    const fs::path written = options.to == "mjcf"      ? saveMjcf(*robot, options.out)
+                             : options.to == "graspit" ? saveRobotFile(*robot, options.out)
+                                                       : saveUrdf(*robot, options.out);
     if (!quiet) out << fmt::format("wrote {}\n", written.string());
     return 0;
   }

@@ -1,6 +1,6 @@
-// Every robot of the GraspIt! corpus written as URDF and read back: the same DOFs and chains,
-// the same triangles on every link, and the same link poses (1e-6 mm, 1e-9 in the axes) at
-// GraspIt!'s reference DOF vectors and at each robot's zero, lower, middle and upper DOF
+// Every robot of the GraspIt! corpus written as URDF (and as GraspIt! XML) and read back: the same
+// DOFs and chains, the same triangles on every link, and the same link poses (1e-6 mm, 1e-9 in the
+// axes) at GraspIt!'s reference DOF vectors and at each robot's zero, lower, middle and upper DOF
 // vectors. A DOF's value read back is scaled by its first joint's coupling ratio (the URDF
 // joint that carries the DOF turns by the joint's angle).
 
@@ -74,6 +74,44 @@ TEST(UrdfRoundTrip, EveryCorpusRobotKeepsItsLinksAndPoses) {
       }
       after.setDofValues(scaled, LimitPolicy::Ignore);
       for (std::size_t c = 0; c < original->chains.size(); ++c) {
+        for (std::size_t l = 0; l < original->chains[c].links.size(); ++l) {
+          const Transform& a = before.linkPose(static_cast<int>(c), static_cast<int>(l));
+          const Transform& b = after.linkPose(static_cast<int>(c), static_cast<int>(l));
+          EXPECT_LT((a.translation() - b.translation()).norm(), 1e-6)
+              << "chain " << c << " link " << l;
+          EXPECT_LT((a.linear() - b.linear()).norm(), 1e-9) << "chain " << c << " link " << l;
+        }
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 20);
+}
+
+// Written back as GraspIt! XML (robot file, body files, OFF meshes), every corpus robot reads
+// back with the same DOFs, links, triangles and link poses at the same DOF vectors.
+TEST(GraspitRobotRoundTrip, EveryCorpusRobotKeepsItsLinksAndPoses) {
+  GRASPKIT_REQUIRE_SHARED();
+  test::QuietWarnings quiet;
+  const fs::path data = *test::graspitDataDir();
+  const fs::path out = test::scratchDir();
+  int checked = 0;
+  for (const json& entry : test::referenceJson().at("robot_survey_shared")) {
+    if (!entry.at("load_ok").get<bool>()) continue;
+    const std::string file = entry.at("file");
+    SCOPED_TRACE(file);
+    const auto original = loadRobotFile(data / file);
+    const auto back = loadRobotFile(saveRobotFile(*original, out / fs::path(file).stem()));
+    ASSERT_EQ(back->dofs.size(), original->dofs.size());
+    ASSERT_EQ(back->chains.size(), original->chains.size());
+    EXPECT_EQ(back->triangleCount(), original->triangleCount());
+    EXPECT_EQ(back->type, original->type);
+    Robot before(original), after(back);
+    for (const std::vector<double>& values : dofVectors(*original, file)) {
+      before.setDofValues(values);
+      after.setDofValues(values);
+      for (std::size_t c = 0; c < original->chains.size(); ++c) {
+        ASSERT_EQ(back->chains[c].links.size(), original->chains[c].links.size());
         for (std::size_t l = 0; l < original->chains[c].links.size(); ++l) {
           const Transform& a = before.linkPose(static_cast<int>(c), static_cast<int>(l));
           const Transform& b = after.linkPose(static_cast<int>(c), static_cast<int>(l));

@@ -191,6 +191,29 @@ TEST(UrdfFile, ThreeFingerHandFollowsTheUrdfKinematicsWithMimicJoints) {
   }
 }
 
+// A URDF hand written as GraspIt! XML (its link frames baked into the meshes, GraspIt!'s links
+// sitting at their DH frames) puts every vertex of every link where the URDF does.
+TEST(UrdfFile, WrittenAsGraspitXmlTheGeometryStaysPut) {
+  const auto urdf = loadUrdfFile(writeFile("hand.urdf", threeFingerHand()));
+  const auto graspit = loadRobotFile(saveRobotFile(*urdf, test::scratchDir()));
+  ASSERT_EQ(graspit->chains.size(), urdf->chains.size());
+  Robot a(urdf), b(graspit);
+  for (const double q : {-0.3, 1.1}) {
+    const std::vector<double> values{q, 0.5 * q, 0.2};
+    a.setDofValues(values);
+    b.setDofValues(values);
+    for (int c = 0; c < 3; ++c) {
+      for (int l = 0; l < 2; ++l) {
+        const TriangleMesh& ma = *urdf->chains[c].links[l].body->mesh;
+        const TriangleMesh& mb = *graspit->chains[c].links[l].body->mesh;
+        ASSERT_EQ(ma.vertices.size(), mb.vertices.size());
+        for (std::size_t v = 0; v < ma.vertices.size(); ++v)
+          expectNear(b.linkPose(c, l) * mb.vertices[v], a.linkPose(c, l) * ma.vertices[v]);
+      }
+    }
+  }
+}
+
 // The palm is a plate on the root link through a fixed joint, which carries two finger mounts,
 // also fixed: all one body. Each mount's finger is a chain.
 const char* kBranchingPalm = R"(<?xml version="1.0"?>

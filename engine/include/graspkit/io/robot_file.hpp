@@ -24,6 +24,13 @@ std::shared_ptr<const RobotModel> loadRobotFile(const std::filesystem::path& fil
                                                 const LoadOptions& options = {},
                                                 ModelCache* cache = nullptr);
 
+// Writes `robot` as GraspIt! XML: FOLDER/<name>.xml, and a Body XML with an OFF mesh per body
+// in FOLDER/iv (where the robot file looks for them), so that GraspIt! itself can load a robot
+// graspkit read (a URDF hand). A link's own frame (Link::frame, a URDF link's) is baked into its
+// mesh and mass properties, GraspIt!'s links sitting at their DH frames. Returns the robot
+// file's path. Eigengrasps, virtual contacts and the robot type's extras are not written.
+std::filesystem::path saveRobotFile(const RobotModel& robot, const std::filesystem::path& folder);
+
 // An <EigenGrasps dimensions=N> file for a robot with `dof_count` DOFs.
 EigengraspSet loadEigengraspFile(const std::filesystem::path& file, int dof_count);
 
