@@ -37,6 +37,20 @@ std::vector<std::vector<double>> dofVectors(const RobotModel& model, const std::
   return vectors;
 }
 
+// Every link of `before` where the same link of `after` is: 1e-6 mm, 1e-9 in the axes.
+void expectSamePoses(const Robot& before, const Robot& after) {
+  const auto& a = before.linkPoses();
+  const auto& b = after.linkPoses();
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    for (std::size_t l = 0; l < a[c].size(); ++l) {
+      EXPECT_LT((a[c][l].translation() - b[c][l].translation()).norm(), 1e-6)
+          << "chain " << c << " link " << l;
+      EXPECT_LT((a[c][l].linear() - b[c][l].linear()).norm(), 1e-9)
+          << "chain " << c << " link " << l;
+    }
+  }
+}
+
 TEST(UrdfRoundTrip, EveryCorpusRobotKeepsItsLinksAndPoses) {
   GRASPKIT_REQUIRE_SHARED();
   test::QuietWarnings quiet;
@@ -73,15 +87,7 @@ TEST(UrdfRoundTrip, EveryCorpusRobotKeepsItsLinksAndPoses) {
                         : original->joint(dof.joints.front()).ratio * before.dofValues()[d];
       }
       after.setDofValues(scaled, LimitPolicy::Ignore);
-      for (std::size_t c = 0; c < original->chains.size(); ++c) {
-        for (std::size_t l = 0; l < original->chains[c].links.size(); ++l) {
-          const Transform& a = before.linkPose(static_cast<int>(c), static_cast<int>(l));
-          const Transform& b = after.linkPose(static_cast<int>(c), static_cast<int>(l));
-          EXPECT_LT((a.translation() - b.translation()).norm(), 1e-6)
-              << "chain " << c << " link " << l;
-          EXPECT_LT((a.linear() - b.linear()).norm(), 1e-9) << "chain " << c << " link " << l;
-        }
-      }
+      expectSamePoses(before, after);
     }
     ++checked;
   }
@@ -106,20 +112,13 @@ TEST(GraspitRobotRoundTrip, EveryCorpusRobotKeepsItsLinksAndPoses) {
     ASSERT_EQ(back->chains.size(), original->chains.size());
     EXPECT_EQ(back->triangleCount(), original->triangleCount());
     EXPECT_EQ(back->type, original->type);
+    for (std::size_t c = 0; c < original->chains.size(); ++c)
+      ASSERT_EQ(back->chains[c].links.size(), original->chains[c].links.size());
     Robot before(original), after(back);
     for (const std::vector<double>& values : dofVectors(*original, file)) {
       before.setDofValues(values);
       after.setDofValues(values);
-      for (std::size_t c = 0; c < original->chains.size(); ++c) {
-        ASSERT_EQ(back->chains[c].links.size(), original->chains[c].links.size());
-        for (std::size_t l = 0; l < original->chains[c].links.size(); ++l) {
-          const Transform& a = before.linkPose(static_cast<int>(c), static_cast<int>(l));
-          const Transform& b = after.linkPose(static_cast<int>(c), static_cast<int>(l));
-          EXPECT_LT((a.translation() - b.translation()).norm(), 1e-6)
-              << "chain " << c << " link " << l;
-          EXPECT_LT((a.linear() - b.linear()).norm(), 1e-9) << "chain " << c << " link " << l;
-        }
-      }
+      expectSamePoses(before, after);
     }
     ++checked;
   }
