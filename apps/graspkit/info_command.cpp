@@ -65,6 +65,7 @@ json robotJson(const Robot& robot) {
                          {"joints", dof.joints}});
   }
   j["base"] = pose(m.name + "Base", robot.pose());
+  j["base"]["material"] = std::string(materialName(m.palm->material));
   j["base"]["triangles"] = m.palm->mesh->triangleCount();
   j["chains"] = json::array();
   for (std::size_t c = 0; c < m.chains.size(); ++c) {
@@ -72,6 +73,7 @@ json robotJson(const Robot& robot) {
     json links = json::array();
     for (std::size_t l = 0; l < chain.links.size(); ++l) {
       json link = pose(chain.links[l].name, robot.linkPose(c, l));
+      link["material"] = std::string(materialName(chain.links[l].body->material));
       link["triangles"] = chain.links[l].body->mesh->triangleCount();
       links.push_back(link);
     }

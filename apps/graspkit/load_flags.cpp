@@ -1,10 +1,15 @@
 // The options every command that loads files shares, and where models are found by default.
 
+#include "load_flags.hpp"
+
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
-#include "load_flags.hpp"
+#include "graspkit/error.hpp"
+#include "graspkit/material.hpp"
 
 namespace fs = std::filesystem;
 
@@ -38,6 +43,19 @@ LoadOptions LoadFlags::options() const {
   options.genericRobotFallback = genericRobots;
   options.packagePaths = packagePaths;
   options.urdfPalm = palm;
+  auto materialNamed = [](const std::string& option, const std::string& name) {
+    const auto m = materialFromName(name);
+    if (!m) throw Error(fmt::format("{}: '{}' is not one of GraspIt!'s materials", option, name));
+    return *m;
+  };
+  if (!material.empty()) options.urdfMaterial = materialNamed("--urdf-material", material);
+  for (const std::string& pair : linkMaterials) {
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw Error(fmt::format("--link-material: '{}' is not LINK=MATERIAL", pair));
+    options.urdfLinkMaterials[pair.substr(0, equals)] =
+        materialNamed("--link-material", pair.substr(equals + 1));
+  }
   return options;
 }
 
@@ -52,6 +70,12 @@ void addLoadFlags(CLI::App& command, LoadFlags& flags) {
       ->allow_extra_args(false);
   command.add_option("--palm", flags.palm,
                      "URDF: the link to take as the palm (default: the root)");
+  command.add_option("--urdf-material", flags.material,
+                     "URDF: every link's material, one of GraspIt!'s (default: rubber)");
+  command
+      .add_option("--link-material", flags.linkMaterials,
+                  "URDF: LINK=MATERIAL, one link's material (repeatable)")
+      ->allow_extra_args(false);
   // Applied once the command line is read, and only when it names no root.
   auto& roots = flags.roots;
   command.parse_complete_callback([&roots] {

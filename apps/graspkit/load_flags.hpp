@@ -1,6 +1,6 @@
 #pragma once
 // The flags every command that loads files shares: --root, --generic-robots, and for URDF
-// robots --package-path and --palm.
+// robots --package-path, --palm, --urdf-material and --link-material.
 
 #include <filesystem>
 #include <string>
@@ -17,7 +17,10 @@ struct LoadFlags {
   bool genericRobots = false;
   std::vector<std::filesystem::path> packagePaths;
   std::string palm;
+  std::string material;                    // every URDF link's (empty: rubber)
+  std::vector<std::string> linkMaterials;  // LINK=MATERIAL
 
+  // Throws graspkit::Error naming the option for an unknown material or a malformed pair.
   LoadOptions options() const;
 };
 

@@ -18,6 +18,7 @@
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/material.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -132,6 +133,25 @@ std::string num(double value) {
   std::ostringstream out;
   out << std::setprecision(17) << value;
   return out.str();
+}
+
+TEST(UrdfFile, LinksAreRubberUnlessTheOptionsSayOtherwise) {
+  const fs::path file = writeFile("gripper.urdf", kGripper);
+  const auto plain = loadUrdfFile(file);
+  EXPECT_EQ(plain->palm->material, Material::Rubber);
+  EXPECT_EQ(plain->chains[0].links[0].body->material, Material::Rubber);
+  LoadOptions options;
+  options.urdfMaterial = Material::Plastic;
+  options.urdfLinkMaterials = {{"left", Material::Metal}};
+  const auto chosen = loadUrdfFile(file, options);
+  EXPECT_EQ(chosen->palm->material, Material::Plastic);
+  options.urdfLinkMaterials = {{"palm", Material::Wood}};
+  EXPECT_EQ(loadUrdfFile(file, options)->palm->material, Material::Wood);
+  options.urdfLinkMaterials = {{"left", Material::Metal}};
+  EXPECT_EQ(chosen->chains[0].links[0].body->material, Material::Metal);
+  EXPECT_EQ(chosen->chains[1].links[0].body->material, Material::Plastic);
+  options.urdfLinkMaterials = {{"thumb", Material::Metal}};
+  EXPECT_THROW(loadUrdfFile(file, options), Error);
 }
 
 // Three fingers round a palm, each turned about z by its mount's yaw and tilted; a proximal

@@ -121,6 +121,11 @@ class UrdfReader {
     checkTree(root);
     parse(root);
     const std::string palm = palmLink(root);
+    for (const auto& [link, material] : options_.urdfLinkMaterials)
+      if (!link_elements_.count(link))
+        throw Error(
+            xml::at(file_, root),
+            fmt::format("a material is given for link '{}', which the file does not have", link));
     auto robot = std::make_shared<RobotModel>();
     robot->file = file_;
     robot->name = model_->getName().empty() ? file_.stem().string() : model_->getName();
@@ -538,7 +543,8 @@ class UrdfReader {
     auto body = std::make_shared<BodyModel>();
     body->name = name;
     body->file = file_;
-    body->material = options_.urdfMaterial;
+    const auto own = options_.urdfLinkMaterials.find(name);
+    body->material = own != options_.urdfLinkMaterials.end() ? own->second : options_.urdfMaterial;
     TriangleMesh mesh;
     double mass = 0.0;
     Vector3 moment = Vector3::Zero();   // sum of m * c

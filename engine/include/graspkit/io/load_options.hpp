@@ -2,6 +2,7 @@
 // Options shared by the file readers.
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,11 @@ struct LoadOptions {
   Registry* registry = nullptr;
   // URDF robots (io/urdf_file.hpp): folders holding the packages `package://` paths name (a
   // package's folder itself, or the folder it sits in), the link to take as the palm (empty:
-  // the URDF's root) and the material of every link.
+  // the URDF's root), the material of every link, and per link (by URDF link name) another.
   std::vector<std::filesystem::path> packagePaths;
   std::string urdfPalm;
   Material urdfMaterial = Material::Rubber;
+  std::map<std::string, Material> urdfLinkMaterials;
 };
 
 // The folders a world's <filename> is resolved against, in order.

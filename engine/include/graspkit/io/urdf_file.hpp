@@ -22,7 +22,8 @@
 //   other paths are relative to the file's folder. Metres become millimetres, kilograms grams.
 // - Mass properties from <inertial>; a link without one gets GraspIt!'s default mass and the
 //   inertia of its geometry.
-// - Links are rubber (LoadOptions::urdfMaterial). DOF controllers get maxEffort from the
+// - Links are rubber (LoadOptions::urdfMaterial; LoadOptions::urdfLinkMaterials per link, a
+//   body taking the material of the link it is named after). DOF controllers get maxEffort from the
 //   joint's `effort` and GraspIt!'s Barrett gains; each DOF closes towards its upper limit.
 //
 // Bad input (a cycle, a link with two parents, a missing mesh, a zero axis, a mimic of a
