@@ -348,6 +348,33 @@ TEST(CAbi, AddFileAppendsAndAFailureChangesNothing) {
             GRASPKIT_ERROR_INVALID_ARGUMENT);
 }
 
+// The project's URDF gripper, loaded through the C ABI as any robot file: by hand, each finger's
+// link frame is its joint origin slid along its x axis by the DOF (the right one turned half
+// round about z, so its slide closes towards the centre too).
+TEST(CAbi, UrdfRobotLoadsWithTheUrdfLinkFrames) {
+  WorldPtr world;
+  loadOrFail((modelsDir() / "robots/urdf_gripper/urdf_gripper.urdf").string(), world);
+  int32_t robot = -1, dofs = 0, chains = 0;
+  ASSERT_EQ(graspkit_world_find_robot(world, "urdf_gripper", &robot), GRASPKIT_OK) << lastError();
+  graspkit_robot_dof_count(world, robot, &dofs);
+  graspkit_robot_chain_count(world, robot, &chains);
+  ASSERT_EQ(dofs, 1);
+  ASSERT_EQ(chains, 2);
+  const double slide = 15.0;
+  ASSERT_EQ(graspkit_robot_set_dofs(world, robot, &slide, 1), GRASPKIT_OK) << lastError();
+  graspkit_pose left{}, right{};
+  ASSERT_EQ(graspkit_robot_link_pose(world, robot, 0, 0, &left), GRASPKIT_OK);
+  ASSERT_EQ(graspkit_robot_link_pose(world, robot, 1, 0, &right), GRASPKIT_OK);
+  const double left_at[3] = {-40.0 + slide, 0.0, 1.0}, right_at[3] = {40.0 - slide, 0.0, 1.0};
+  const double unturned[4] = {1, 0, 0, 0}, half_turn_z[4] = {0, 0, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(left.translation[i], left_at[i], 1e-9);
+    EXPECT_NEAR(right.translation[i], right_at[i], 1e-9);
+  }
+  EXPECT_LT(quaternionDistance(left.rotation, unturned), 1e-12);
+  EXPECT_LT(quaternionDistance(right.rotation, half_turn_z), 1e-12);
+}
+
 class CAbiPlannerMug : public testing::Test {
  protected:
   void SetUp() override {

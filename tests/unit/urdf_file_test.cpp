@@ -375,9 +375,13 @@ TEST(UrdfFile, BadFilesNameFileLineAndElement) {
        5, "axis is zero"},
       {"mimic_missing",
        "<joint name=\"ab\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\n"
-       "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"ghost\"/>"
-       "</joint>\n",
+       "<axis xyz=\"0 0 1\"/><limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+       "<mimic joint=\"ghost\"/></joint>\n",
        5, "ghost"},
+      {"no_axis",
+       "<joint name=\"ab\" type=\"prismatic\"><parent link=\"a\"/><child link=\"b\"/>\n"
+       "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n",
+       4, "needs <axis"},
       {"nan_limit",
        "<joint name=\"ab\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\n"
        "<limit lower=\"nan\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n",

@@ -216,7 +216,8 @@ class UrdfReader {
         finiteNumbers(*origin, "xyz", 3);
         finiteNumbers(*origin, "rpy", 3);
       }
-      if (const XMLElement* axis = e->FirstChildElement("axis")) {
+      const XMLElement* axis = e->FirstChildElement("axis");
+      if (axis) {
         const std::vector<double> xyz = finiteNumbers(*axis, "xyz", 3);
         if (!xyz.empty() && Vector3(xyz[0], xyz[1], xyz[2]).norm() < 1e-9)
           throw Error(xml::at(file_, *axis), fmt::format("joint '{}': the axis is zero", name));
@@ -238,6 +239,13 @@ class UrdfReader {
           throw Error(xml::at(file_, *limit),
                       fmt::format("joint '{}': lower limit {} above upper {}", name, lower, upper));
       }
+      // URDF lets a movable joint leave its axis out and take (1, 0, 0); a hand file that does
+      // so has more often lost its axis than meant that one, so it is asked for.
+      if (t != "fixed" && (!axis || !axis->Attribute("xyz")))
+        throw Error(xml::at(file_, axis ? *axis : *e),
+                    fmt::format("joint '{}': a {} joint needs <axis xyz=...> (URDF's default is "
+                                "\"1 0 0\"; write it if that is the axis meant)",
+                                name, t));
       if (const XMLElement* mimic = e->FirstChildElement("mimic")) {
         const char* target = mimic->Attribute("joint");
         if (!target || !joint_elements_.count(target))
