@@ -126,6 +126,76 @@ TEST(Collision, CubesFiveMillimetresApartAlongX) {
   EXPECT_NEAR(back.pointOnA.x(), 6.0, kTol);
 }
 
+TEST(Collision, WithinDistanceOfCubesFiveMillimetresApart) {
+  const World world = twoCubes(translation(6, 0, 0));
+  EXPECT_TRUE(withinDistance(world, kA, kB, 5.0 + 1e-9));
+  EXPECT_FALSE(withinDistance(world, kA, kB, 5.0 - 1e-9));
+  EXPECT_FALSE(withinDistance(world, kA, kB, 0.1));
+  EXPECT_TRUE(withinDistance(twoCubes(translation(0.5, 0.3, 0.2)), kA, kB, 1e-6));  // crossing
+  EXPECT_FALSE(withinDistance(world, kA, kB, 0.0));
+}
+
+// The octahedron |x| + |y| + |z| <= 1: its bounding boxes reach well beyond it, so near poses
+// go past FCL's root test to the hull certificates.
+std::shared_ptr<TriangleMesh> octahedronMesh() {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                     {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return mesh;
+}
+
+// A certificate that the octahedra were apart must not survive a turn that brings them
+// together: B's left corner hangs 0.04 mm over the middle of A's face x + y + z = 1, and turning
+// B by 0.1 rad about z round its own centre swings that corner (1 - cos - sin)/sqrt(3) = 0.055 mm
+// towards the face, through it.
+TEST(Collision, ACertificateAllowsForTurning) {
+  const Vector3 n = Vector3(1, 1, 1).normalized();
+  const Vector3 corner = Vector3(1, 1, 1) / 3.0 + 0.04 * n;
+  World world;
+  addBody(world, octahedronMesh(), Transform::Identity());
+  addBody(world, octahedronMesh(), translation(corner.x() + 1, corner.y(), corner.z()));
+  ASSERT_FALSE(collide(world, kA, kB));  // proved apart, and remembered
+  Transform turned = world.bodies()[1].pose;
+  turned.rotate(Eigen::AngleAxisd(0.1, Vector3::UnitZ()));
+  world.bodies()[1].pose = turned;
+  EXPECT_TRUE(collide(world, kA, kB));
+  EXPECT_EQ(distance(world, kA, kB).distance, 0.0);
+}
+
+// withinDistance against FCL's full distance, and collide (whose separation certificates are
+// remembered between queries) against FCL's own collide inside distance(), along a random walk
+// of a turned octahedron round a fixed one: many nearby poses, some crossing, some a hair apart.
+TEST(Collision, CertificatesAndThresholdsAgreeWithFullQueriesOnARandomWalk) {
+  World world;
+  addBody(world, octahedronMesh(), Transform::Identity());
+  addBody(world, octahedronMesh(), translation(1.5, 0.2, 0.1));
+  std::mt19937 random(7);
+  std::normal_distribution<double> jitter(0.0, 0.05);
+  std::uniform_real_distribution<double> threshold(0.0, 0.3);
+  Vector3 at(1.5, 0.2, 0.1);
+  double angle = 0.3;
+  int crossing = 0, near = 0;
+  for (int step = 0; step < 4000; ++step) {
+    // Every other step only turns, about the centre: a certificate must allow for turning too.
+    if (step % 2) at += Vector3(jitter(random), jitter(random), jitter(random));
+    at = at.cwiseMax(Vector3(-2.5, -2.5, -2.5)).cwiseMin(Vector3(2.5, 2.5, 2.5));
+    angle += jitter(random);
+    Transform pose = translation(at.x(), at.y(), at.z());
+    pose.rotate(Eigen::AngleAxisd(angle, Vector3(1, 2, 3).normalized()));
+    world.bodies()[1].pose = pose;
+    const double full = distance(world, kA, kB).distance;
+    const double t = threshold(random);
+    ASSERT_EQ(collide(world, kA, kB), full == 0.0) << "step " << step << " distance " << full;
+    if (std::abs(full - t) > 1e-9)
+      ASSERT_EQ(withinDistance(world, kA, kB, t), full < t) << "step " << step << " t " << t;
+    crossing += full == 0.0;
+    near += full > 0.0 && full < 0.3;
+  }
+  EXPECT_GT(crossing, 100);  // the walk did visit both sides
+  EXPECT_GT(near, 100);
+}
+
 TEST(Collision, CubeRotated45DegreesAboutZ) {
   // The second cube turned 45 degrees about its own vertical axis, its centre at (cx, .5, .5):
   // its nearest feature is the vertical edge at x = cx - sqrt(2)/2, facing the face x = 1.

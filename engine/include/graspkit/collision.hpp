@@ -40,6 +40,12 @@ struct DistanceResult {
 // The distance between the surfaces of `a` and `b`, whatever the world's CollisionFilter says.
 DistanceResult distance(const World& world, const BodyRef& a, const BodyRef& b);
 
+// Whether the surfaces of `a` and `b` come closer than `threshold` mm (intersecting surfaces
+// do), whatever the world's CollisionFilter says. The same answer as
+// distance(...).distance < threshold, but FCL's traversal leaves out every pair of bounding
+// volumes at least `threshold` apart, so near-miss pairs cost far less.
+bool withinDistance(const World& world, const BodyRef& a, const BodyRef& b, double threshold);
+
 struct CollisionRequest {
   // When not empty, only pairs with at least one body in this list are checked. The span must
   // stay valid during the call.

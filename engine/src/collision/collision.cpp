@@ -72,6 +72,22 @@ DistanceResult distance(const World& world, const BodyRef& a, const BodyRef& b) 
   return {result.min_distance, result.nearest_points[0], result.nearest_points[1]};
 }
 
+bool withinDistance(const World& world, const BodyRef& a, const BodyRef& b, double threshold) {
+  const Placed pa = place(world, a), pb = place(world, b);
+  if (!pa.geometry || !pb.geometry || !(threshold > 0)) return false;
+  WorldBox reach = pa.box;
+  reach.halfSize.array() += threshold;
+  if (!reach.overlaps(pb.box)) return false;
+  // FCL prunes a pair of bounding volumes once its lower bound reaches the smallest distance
+  // found so far, and only ever lowers that: starting it at the threshold asks exactly whether
+  // some pair of triangles is closer. Crossing triangles are at distance 0.
+  const fcl::DistanceRequestd request(false);
+  fcl::DistanceResultd result;
+  result.min_distance = threshold;
+  fcl::distance(pa.geometry->bvh.get(), pa.pose, pb.geometry->bvh.get(), pb.pose, request, result);
+  return result.min_distance < threshold;
+}
+
 namespace {
 
 // The bodies with geometry, placed, and whether each is of interest (all are when none is named).

@@ -5,6 +5,8 @@
 #include "collision/collision_geometry.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <mutex>
 #include <shared_mutex>
@@ -115,23 +117,82 @@ double support(const collision::ConvexHull& hull, const Transform& pose, const V
   return (local.transpose() * hull.vertices).maxCoeff() + direction.dot(pose.translation());
 }
 
-// Whether the plane across world axis n has every vertex of a's hull below it and every one of
-// b's above. 1e-9 mm of the gap absorbs rounding in the pose arithmetic (FCL's triangle tests
-// round alike).
-bool separates(const Vector3& n, const CollisionGeometry& a, const Transform& pose_a,
+// The width of the slab between a's hull and b's across world axis n (unit): how far below the
+// lowest vertex of b's hull the highest of a's lies. Positive: the hulls are apart by at least
+// that much.
+double slabGap(const Vector3& n, const CollisionGeometry& a, const Transform& pose_a,
                const CollisionGeometry& b, const Transform& pose_b) {
-  return support(*a.hull, pose_a, n) + 1e-9 < -support(*b.hull, pose_b, -n);
+  return -support(*b.hull, pose_b, -n) - support(*a.hull, pose_a, n);
 }
+
+// How far any vertex of `geometry`'s hull can have moved between two poses of its body: the
+// hull lies in the sphere of its box (centre c, radius r), whose centre moved by |to c - from c|
+// and whose rim turned by at most ||R_to - R_from||_2 r = sqrt(3 - tr(R_from^T R_to)) r.
+double displacement(const CollisionGeometry& geometry, const Transform& from, const Transform& to) {
+  const Vector3& c = geometry.boxCenter;
+  const double trace = (from.linear().array() * to.linear().array()).sum();
+  const double turn = std::sqrt(std::max(0.0, 3.0 - trace));
+  return (to * c - from * c).norm() + turn * geometry.boxHalfSize.norm();
+}
+
+// A proof that two hulls were at least `gap` apart, placed as they were then. It still holds
+// for any placement whose two displacements from those poses add up to less than the gap.
+struct SeparationCertificate {
+  Transform pose_a = Transform::Identity();
+  Transform pose_b = Transform::Identity();
+  double gap = -1.0;  // negative: empty
+};
+
+// Rounding in the support and displacement arithmetic stays far below this, mm (FCL's triangle
+// tests round alike).
+constexpr double kCertificateMargin = 1e-6;
 
 // What one thread remembers of a pair of meshes between queries (planners and autograsp ask
 // about the same pairs in nearby poses again and again): the last separating axis, in a's body
-// frame, and how many queries to leave to FCL alone after certificates failed. Memory only
-// chooses what to try; every answer is still checked, so stale memory costs time, never truth.
+// frame, a few separation certificates (a mesh shown by several links, as a hand's fingers,
+// meets the other mesh at several poses), and how many queries to leave to FCL alone after
+// certificates failed. Memory only chooses what to try or proves by geometry; stale memory costs
+// time, never truth.
 struct PairMemory {
   Vector3 axis = Vector3::Zero();
   int failures = 0;
   int skip = 0;
+  std::array<SeparationCertificate, 4> certificates;
 };
+
+bool certified(const PairMemory& memory, const CollisionGeometry& a, const Transform& pose_a,
+               const CollisionGeometry& b, const Transform& pose_b) {
+  for (const SeparationCertificate& c : memory.certificates)
+    if (c.gap > 0 && c.gap > displacement(a, c.pose_a, pose_a) + displacement(b, c.pose_b, pose_b) +
+                                 kCertificateMargin)
+      return true;
+  return false;
+}
+
+// Keeps a certificate in the slot of the placement nearest this one (or an empty slot), so each
+// finger showing a shared mesh keeps its own.
+void remember(PairMemory& memory, const Transform& pose_a, const Transform& pose_b, double gap) {
+  auto farness = [&](const SeparationCertificate& c) {
+    if (c.gap < 0) return -1.0;
+    return (c.pose_a.translation() - pose_a.translation()).norm() +
+           (c.pose_b.translation() - pose_b.translation()).norm();
+  };
+  auto slot =
+      std::min_element(memory.certificates.begin(), memory.certificates.end(),
+                       [&](const auto& x, const auto& y) { return farness(x) < farness(y); });
+  *slot = {pose_a, pose_b, gap};
+}
+
+// Whether axis n (unit, world) separates the hulls by more than the margin; if so, remembered.
+bool separatesAndRemember(PairMemory& memory, const Vector3& n, const CollisionGeometry& a,
+                          const Transform& pose_a, const CollisionGeometry& b,
+                          const Transform& pose_b) {
+  const double gap = slabGap(n, a, pose_a, b, pose_b);
+  if (!(gap > kCertificateMargin)) return false;
+  memory.axis = pose_a.linear().transpose() * n;
+  remember(memory, pose_a, pose_b, gap - kCertificateMargin);
+  return true;
+}
 
 PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
   using Key = std::pair<const CollisionGeometry*, const CollisionGeometry*>;
@@ -156,8 +217,11 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
                     b.bvh->getBV(0).bv))
     return false;
   PairMemory& memory = memoryOf(a, b);
+  // A certificate from a nearby placement proves it without looking at a vertex.
+  if (certified(memory, a, pose_a, b, pose_b)) return true;
   // The axis that separated them last time, first: nearby poses are usually still apart by it.
-  if (!memory.axis.isZero() && separates(pose_a.linear() * memory.axis, a, pose_a, b, pose_b))
+  if (!memory.axis.isZero() &&
+      separatesAndRemember(memory, pose_a.linear() * memory.axis, a, pose_a, b, pose_b))
     return true;
   // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
   // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
@@ -170,13 +234,10 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   fcl::DistanceResultd result;
   fcl::distance(a.hull->shape.get(), pose_a, b.hull->shape.get(), pose_b, request, result);
   const Vector3 axis = result.nearest_points[1] - result.nearest_points[0];
-  if (result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite()) {
-    const Vector3 n = axis.normalized();
-    if (separates(n, a, pose_a, b, pose_b)) {
-      memory.axis = pose_a.linear().transpose() * n;
-      memory.failures = 0;
-      return true;
-    }
+  if (result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite() &&
+      separatesAndRemember(memory, axis.normalized(), a, pose_a, b, pose_b)) {
+    memory.failures = 0;
+    return true;
   }
   memory.failures = std::min(memory.failures + 1, 5);
   memory.skip = (1 << memory.failures) - 1;  // 1, 3, 7, 15, 31 queries... capped below

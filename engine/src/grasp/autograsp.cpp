@@ -223,7 +223,7 @@ std::vector<double> interpolate(const std::vector<double>& a, const std::vector<
 bool withinContactInstant(const World& world,
                           const std::vector<std::pair<BodyRef, BodyRef>>& pairs) {
   return std::any_of(pairs.begin(), pairs.end(), [&](const auto& pair) {
-    return distance(world, pair.first, pair.second).distance < kContactInstant;
+    return withinDistance(world, pair.first, pair.second, kContactInstant);
   });
 }
 
