@@ -78,6 +78,7 @@ bool withinDistance(const World& world, const BodyRef& a, const BodyRef& b, doub
   WorldBox reach = pa.box;
   reach.halfSize.array() += threshold;
   if (!reach.overlaps(pb.box)) return false;
+  if (hullsApart(*pa.geometry, pa.pose, *pb.geometry, pb.pose, threshold)) return false;
   // FCL prunes a pair of bounding volumes once its lower bound reaches the smallest distance
   // found so far, and only ever lowers that: starting it at the threshold asks exactly whether
   // some pair of triangles is closer. Crossing triangles are at distance 0.

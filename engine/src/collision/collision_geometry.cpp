@@ -161,10 +161,10 @@ struct PairMemory {
 };
 
 bool certified(const PairMemory& memory, const CollisionGeometry& a, const Transform& pose_a,
-               const CollisionGeometry& b, const Transform& pose_b) {
+               const CollisionGeometry& b, const Transform& pose_b, double by) {
   for (const SeparationCertificate& c : memory.certificates)
-    if (c.gap > 0 && c.gap > displacement(a, c.pose_a, pose_a) + displacement(b, c.pose_b, pose_b) +
-                                 kCertificateMargin)
+    if (c.gap > by && c.gap > displacement(a, c.pose_a, pose_a) +
+                                  displacement(b, c.pose_b, pose_b) + by + kCertificateMargin)
       return true;
   return false;
 }
@@ -183,15 +183,16 @@ void remember(PairMemory& memory, const Transform& pose_a, const Transform& pose
   *slot = {pose_a, pose_b, gap};
 }
 
-// Whether axis n (unit, world) separates the hulls by more than the margin; if so, remembered.
-bool separatesAndRemember(PairMemory& memory, const Vector3& n, const CollisionGeometry& a,
-                          const Transform& pose_a, const CollisionGeometry& b,
-                          const Transform& pose_b) {
-  const double gap = slabGap(n, a, pose_a, b, pose_b);
-  if (!(gap > kCertificateMargin)) return false;
+// The certified gap across axis n (unit, world), less the margin; a positive one is remembered.
+// Not positive: n proves nothing.
+double separationAlong(PairMemory& memory, const Vector3& n, const CollisionGeometry& a,
+                       const Transform& pose_a, const CollisionGeometry& b,
+                       const Transform& pose_b) {
+  const double gap = slabGap(n, a, pose_a, b, pose_b) - kCertificateMargin;
+  if (!(gap > 0)) return 0.0;
   memory.axis = pose_a.linear().transpose() * n;
-  remember(memory, pose_a, pose_b, gap - kCertificateMargin);
-  return true;
+  remember(memory, pose_a, pose_b, gap);
+  return gap;
 }
 
 PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
@@ -209,7 +210,7 @@ PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
 }  // namespace
 
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
-                const Transform& pose_b) {
+                const Transform& pose_b, double by) {
   if (!a.hull || !b.hull) return false;
   // Root bounding volumes apart: FCL's own traversal ends at once, no certificate is worth it.
   const Transform relative = pose_a.inverse() * pose_b;
@@ -218,11 +219,13 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
     return false;
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
-  if (certified(memory, a, pose_a, b, pose_b)) return true;
+  if (certified(memory, a, pose_a, b, pose_b, by)) return true;
   // The axis that separated them last time, first: nearby poses are usually still apart by it.
-  if (!memory.axis.isZero() &&
-      separatesAndRemember(memory, pose_a.linear() * memory.axis, a, pose_a, b, pose_b))
-    return true;
+  if (!memory.axis.isZero()) {
+    const double gap = separationAlong(memory, pose_a.linear() * memory.axis, a, pose_a, b, pose_b);
+    if (gap > by) return true;
+    if (gap > 0 && by > 0) return false;  // apart, but maybe not by enough: GJK would not say more
+  }
   // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
   // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
   if (memory.skip > 0) {
@@ -234,10 +237,12 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   fcl::DistanceResultd result;
   fcl::distance(a.hull->shape.get(), pose_a, b.hull->shape.get(), pose_b, request, result);
   const Vector3 axis = result.nearest_points[1] - result.nearest_points[0];
-  if (result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite() &&
-      separatesAndRemember(memory, axis.normalized(), a, pose_a, b, pose_b)) {
+  const double gap = result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite()
+                         ? separationAlong(memory, axis.normalized(), a, pose_a, b, pose_b)
+                         : 0.0;
+  if (gap > 0) {
     memory.failures = 0;
-    return true;
+    return gap > by;
   }
   memory.failures = std::min(memory.failures + 1, 5);
   memory.skip = (1 << memory.failures) - 1;  // 1, 3, 7, 15, 31 queries... capped below

@@ -47,7 +47,8 @@ inline WorldBox worldBox(const CollisionGeometry& geometry, const Transform& pos
 // FCL's GJK proposes the axis through the hulls' nearest points; the certificate is that every
 // hull vertex of one lies below, and every one of the other above, a plane across that axis,
 // checked vertex by vertex, so GJK's tolerance never decides a collision. False proves nothing.
+// With `by` > 0: whether they are certainly more than `by` mm apart.
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
-                const Transform& pose_b);
+                const Transform& pose_b, double by = 0.0);
 
 }  // namespace graspkit
