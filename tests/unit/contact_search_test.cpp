@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
+
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -153,6 +156,33 @@ TEST(FindContacts, BeyondTheThresholdNone) {
   const ContactResult found = findContacts(s.world, s.upper, s.lower, wide);
   ASSERT_EQ(found.contacts.size(), 4u);
   for (const Contact& c : found.contacts) EXPECT_NEAR(c.distance, 0.3, kTol);
+}
+
+// inContact is findContacts' "found any": hand cases, then random tilted poses about the
+// threshold, some crossing, either body first.
+TEST(InContact, AnswersWhetherFindContactsFindsAny) {
+  EXPECT_TRUE(inContact(twoCubes(0.05).world, BodyRef::body(1), BodyRef::body(0)));
+  EXPECT_FALSE(inContact(twoCubes(0.3).world, BodyRef::body(1), BodyRef::body(0)));
+  ContactRequest wide;
+  wide.threshold = 0.5;
+  EXPECT_TRUE(inContact(twoCubes(0.3).world, BodyRef::body(1), BodyRef::body(0), wide));
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> gap(-0.2, 0.3), shift(-25, 25), tilt(-0.02, 0.02);
+  int with = 0, without = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    TwoCubes s = twoCubes(gap(random), shift(random), shift(random));
+    Transform pose = s.world.bodies()[1].pose;
+    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitX()));
+    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitY()));
+    s.world.bodies()[1].setPose(pose);
+    for (const auto& [a, b] : {std::pair{s.upper, s.lower}, std::pair{s.lower, s.upper}}) {
+      const bool found = !findContacts(s.world, a, b).contacts.empty();
+      ASSERT_EQ(inContact(s.world, a, b), found) << "trial " << trial;
+      (found ? with : without) += 1;
+    }
+  }
+  EXPECT_GT(with, 100);
+  EXPECT_GT(without, 100);
 }
 
 TEST(FindContacts, OverlappingCubesInterpenetrate) {

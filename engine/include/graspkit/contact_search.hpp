@@ -39,4 +39,9 @@ struct ContactResult {
 ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,
                            const ContactRequest& request = {});
 
+// Whether findContacts would find any contact between the two bodies: the search stops at the
+// first. The cheap question of which links touch something.
+bool inContact(const World& world, const BodyRef& body1, const BodyRef& body2,
+               const ContactRequest& request = {});
+
 }  // namespace graspkit

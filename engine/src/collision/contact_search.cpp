@@ -36,9 +36,10 @@ Eigen::AlignedBox3d transformedBox(const Eigen::AlignedBox3d& box, const Transfo
 
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame.
+// With `first_only`, stops once a query triangle has given a contact.
 bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
-                 std::vector<RawContact>& out) {
+                 std::vector<RawContact>& out, bool first_only = false) {
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
   reach.min().array() -= threshold;
@@ -85,6 +86,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
     std::stable_sort(found.begin(), found.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [t, contact] : found) out.push_back(contact);
+    if (first_only && !out.empty()) break;
   }
   return intersecting;
 }
@@ -192,48 +194,84 @@ Contact makeContact(const BodyRef& body1, const BodyRef& body2, const RawContact
 
 }  // namespace
 
-ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,
-                           const ContactRequest& request) {
-  const BodyModel& model1 = bodyModel(world, body1);
-  const BodyModel& model2 = bodyModel(world, body2);
-  ContactResult result;
-  if (!model1.mesh || !model2.mesh || model1.mesh->empty() || model2.mesh->empty()) return result;
+namespace {
 
-  // GraspIt! works on each pair in a fixed order (its first body is the one loaded first); the
-  // clean-up below depends on it, so we work in that order and turn the result round at the end.
-  const bool flip = body2 < body1;
-  const BodyRef& first = flip ? body2 : body1;
-  const BodyRef& second = flip ? body1 : body2;
-  const BodyModel& first_model = flip ? model2 : model1;
-  const BodyModel& second_model = flip ? model1 : model2;
-  const Transform first_pose = bodyPose(world, first);
-  const Transform second_pose = bodyPose(world, second);
-
+// How a pair of bodies is searched. GraspIt! works on each pair in a fixed order (its first body
+// is the one loaded first); the clean-up of contacts depends on it, so the search works in that
+// order and findContacts turns the result round at the end.
+struct PairSearch {
+  bool flip = false;
+  BodyRef first, second;
+  const BodyModel* first_model = nullptr;
+  const BodyModel* second_model = nullptr;
+  Transform first_pose, second_pose;
   // Walk the smaller mesh's triangles and search the larger one's Embree geometry, unless the
   // smaller one's triangles are much larger (a table's few against a glass's many): a search
   // around a large triangle visits everything within its bounding sphere.
-  const auto first_embree = raycast::embreeMesh(first_model.mesh);
-  const auto second_embree = raycast::embreeMesh(second_model.mesh);
-  bool walk_second = first_model.mesh->triangleCount() > second_model.mesh->triangleCount();
-  const double first_size = first_embree->meanTriangleSize();
-  const double second_size = second_embree->meanTriangleSize();
-  if (walk_second ? second_size > 4.0 * first_size : first_size > 4.0 * second_size)
-    walk_second = !walk_second;
-  const auto& query = walk_second ? second_model.mesh : first_model.mesh;
-  const auto& target = walk_second ? first_embree : second_embree;
-  const Transform& query_pose = walk_second ? second_pose : first_pose;
-  const Transform& target_pose = walk_second ? first_pose : second_pose;
-  const Transform query_to_target = target_pose.inverse() * query_pose;
+  bool walk_second = false;
+  const TriangleMesh* query = nullptr;
+  std::shared_ptr<const raycast::EmbreeMesh> target;
+  Transform target_pose, query_to_target;
+  bool reachable = false;  // the boxes come within the threshold
 
-  Eigen::AlignedBox3d reach = target->bounds();
-  reach.min().array() -= request.threshold;
-  reach.max().array() += request.threshold;
-  const Eigen::AlignedBox3d& query_box = (walk_second ? second_embree : first_embree)->bounds();
-  if (!transformedBox(query_box, query_to_target).intersects(reach)) return result;
+  PairSearch(const World& world, const BodyRef& body1, const BodyRef& body2, double threshold) {
+    const BodyModel& model1 = bodyModel(world, body1);
+    const BodyModel& model2 = bodyModel(world, body2);
+    if (!model1.mesh || !model2.mesh || model1.mesh->empty() || model2.mesh->empty()) return;
+    flip = body2 < body1;
+    first = flip ? body2 : body1;
+    second = flip ? body1 : body2;
+    first_model = flip ? &model2 : &model1;
+    second_model = flip ? &model1 : &model2;
+    first_pose = bodyPose(world, first);
+    second_pose = bodyPose(world, second);
+    const auto first_embree = raycast::embreeMesh(first_model->mesh);
+    const auto second_embree = raycast::embreeMesh(second_model->mesh);
+    walk_second = first_model->mesh->triangleCount() > second_model->mesh->triangleCount();
+    const double first_size = first_embree->meanTriangleSize();
+    const double second_size = second_embree->meanTriangleSize();
+    if (walk_second ? second_size > 4.0 * first_size : first_size > 4.0 * second_size)
+      walk_second = !walk_second;
+    query = walk_second ? second_model->mesh.get() : first_model->mesh.get();
+    target = walk_second ? first_embree : second_embree;
+    const Transform& query_pose = walk_second ? second_pose : first_pose;
+    target_pose = walk_second ? first_pose : second_pose;
+    query_to_target = target_pose.inverse() * query_pose;
+    Eigen::AlignedBox3d reach = target->bounds();
+    reach.min().array() -= threshold;
+    reach.max().array() += threshold;
+    const Eigen::AlignedBox3d& query_box = (walk_second ? second_embree : first_embree)->bounds();
+    reachable = transformedBox(query_box, query_to_target).intersects(reach);
+  }
+};
+
+}  // namespace
+
+bool inContact(const World& world, const BodyRef& body1, const BodyRef& body2,
+               const ContactRequest& request) {
+  const PairSearch search(world, body1, body2, request.threshold);
+  if (!search.reachable) return false;
+  std::vector<RawContact> raw;
+  searchPairs(*search.query, search.query_to_target, *search.target, request.threshold,
+              request.touchingIsContact, raw, true);
+  return !raw.empty();
+}
+
+ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,
+                           const ContactRequest& request) {
+  ContactResult result;
+  const PairSearch search(world, body1, body2, request.threshold);
+  if (!search.reachable) return result;
+  const BodyModel& first_model = *search.first_model;
+  const BodyModel& second_model = *search.second_model;
+  const Transform& first_pose = search.first_pose;
+  const Transform& second_pose = search.second_pose;
+  const Transform& target_pose = search.target_pose;
+  const bool walk_second = search.walk_second;
 
   std::vector<RawContact> raw;
-  result.interpenetrating = searchPairs(*query, query_to_target, *target, request.threshold,
-                                        request.touchingIsContact, raw);
+  result.interpenetrating = searchPairs(*search.query, search.query_to_target, *search.target,
+                                        request.threshold, request.touchingIsContact, raw);
   const Transform first_inverse = first_pose.inverse();
   const Transform second_inverse = second_pose.inverse();
   for (RawContact& r : raw) {
@@ -263,8 +301,8 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   result.contacts.reserve(raw.size());
   for (std::size_t i = 0; i < raw.size(); ++i) {
     const SoftPatch* patch = patches.empty() ? nullptr : &patches[i];
-    Contact c = makeContact(first, second, raw[i], first_model, second_model, patch);
-    result.contacts.push_back(flip ? c.mate() : c);
+    Contact c = makeContact(search.first, search.second, raw[i], first_model, second_model, patch);
+    result.contacts.push_back(search.flip ? c.mate() : c);
   }
   return result;
 }

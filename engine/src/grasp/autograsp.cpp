@@ -167,11 +167,21 @@ class Closing {
     }
   }
 
-  // Stops the joints behind each touching link, whatever its motion (the contact instant).
-  void stopTouchingLinks(const std::vector<Contact>& contacts) {
-    for (const Contact& contact : contacts)
-      if (contact.body1.isLink() && contact.body1.index == robot_)
-        stopJoints(jointsBehind(world_.robot(robot_).model(), contact.body1.link));
+  // Stops the joints behind each link that touches something, whatever its motion (the contact
+  // instant). Returns whether any link does.
+  bool stopTouchingLinks() {
+    const ContactRequest request;
+    std::vector<char> touching(hand_.links.size(), 0);
+    bool any = false;
+    for (const auto& [link, other] : handPairs(world_, hand_, request.threshold)) {
+      const auto at = std::lower_bound(hand_.links.begin(), hand_.links.end(), link);
+      char& known = touching[static_cast<std::size_t>(at - hand_.links.begin())];
+      if (known || !inContact(world_, link, other, request)) continue;
+      known = 1;
+      any = true;
+      stopJoints(jointsBehind(world_.robot(robot_).model(), link.link));
+    }
+    return any;
   }
 
  private:
@@ -311,9 +321,8 @@ AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& mot
       result.end = MotionEnd::InterpolationError;
       break;
     }
-    const std::vector<Contact> contacts = robotContacts(world, robot);
-    closing.stopTouchingLinks(contacts);
-    if (motion.stopAtContact && !contacts.empty()) {
+    const bool touching = closing.stopTouchingLinks();
+    if (motion.stopAtContact && touching) {
       result.end = MotionEnd::Contact;
       break;
     }
