@@ -1,14 +1,13 @@
 // graspkit convert: GraspIt!'s legacy side files (.egr eigengrasps, .vgr virtual contacts) into
 // their XML forms, and a bare mesh into a Body XML beside it with computed mass properties.
 
-#include <fstream>
-#include <iterator>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/io/legacy_files.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/output_file.hpp"
@@ -46,11 +45,6 @@ std::string converted(const ConvertOptions& options) {
   throw Error(SourceLocation{options.input.string()},
               "convert reads .egr, .vgr and mesh files (.iv, .wrl, .off, .ply, .stl, .obj); the "
               "pre-2.1 .cfg and .wld grammars have no public description and are not read");
-}
-
-std::string existingText(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 }  // namespace
@@ -95,7 +89,7 @@ int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
   if (fs::equivalent(target, options.input, ec))
     throw Error(SourceLocation{target.string()}, "the output would replace the input");
   const std::string text = converted(options);
-  if (fs::exists(target, ec) && !options.force && existingText(target) != text) {
+  if (fs::exists(target, ec) && !options.force && readInputFile(target) != text) {
     throw Error(SourceLocation{target.string()},
                 "the file exists and differs from the conversion; --force replaces it");
   }

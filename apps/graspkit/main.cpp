@@ -59,6 +59,7 @@ struct CommandOptions {
   graspkit::cli::ViewOptions view;
   graspkit::cli::SimulateOptions simulate;
   graspkit::cli::ValidateOptions validate;
+  graspkit::cli::ObjectsOptions objects;
 };
 
 int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
@@ -76,6 +77,7 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("view")) return runView(o.view, std::cout);
     if (app.got_subcommand("simulate")) return runSimulate(o.simulate, std::cout);
     if (app.got_subcommand("validate")) return runValidate(o.validate, std::cout);
+    if (app.got_subcommand("objects")) return runObjects(o.objects, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -130,6 +132,7 @@ int main(int argc, char** argv) {
   graspkit::cli::addViewCommand(app, options.view);
   graspkit::cli::addSimulateCommand(app, options.simulate);
   graspkit::cli::addValidateCommand(app, options.validate);
+  graspkit::cli::addObjectsCommand(app, options.objects);
 
   try {
     app.parse(argc, argv);

@@ -6,9 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/io/output_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
+#include "io/off_text.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -265,6 +267,16 @@ std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& opti
 std::shared_ptr<const BodyModel> loadBodyFile(const fs::path& file, ModelCache* cache) {
   auto load = [&]() { return isMeshFile(file) ? readBareGeometry(file) : readBodyXml(file); };
   return cache ? cache->body(file, load) : load();
+}
+
+fs::path saveBodyFiles(const fs::path& folder, const std::string& name, const TriangleMesh& mesh,
+                       const BodyXmlOptions& options) {
+  fs::create_directories(folder);
+  const fs::path off = folder / (name + ".off");
+  const fs::path xml = folder / (name + ".xml");
+  writeFileAtomically(off, io::offText(mesh));
+  writeFileAtomically(xml, bodyXmlForMesh(off, options));
+  return xml;
 }
 
 }  // namespace graspkit

@@ -11,6 +11,7 @@
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/material.hpp"
+#include "io/off_text.hpp"
 
 namespace graspkit {
 
@@ -27,14 +28,6 @@ std::string ratio(double value) {
   std::string text = fmt::format("{:.17f}", value);
   while (text.size() > 1 && text.back() == '0') text.pop_back();
   if (text.back() == '.') text.pop_back();
-  return text;
-}
-
-std::string offText(const TriangleMesh& mesh) {
-  std::string text = fmt::format("OFF\n{} {} 0\n", mesh.vertices.size(), mesh.triangles.size());
-  for (const Vector3& v : mesh.vertices)
-    text += fmt::format("{} {} {}\n", number(v.x()), number(v.y()), number(v.z()));
-  for (const auto& t : mesh.triangles) text += fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
   return text;
 }
 
@@ -79,7 +72,7 @@ class GraspitWriter {
     TriangleMesh mesh = body && body->mesh ? *body->mesh : TriangleMesh{};
     transformMesh(mesh, Eigen::Affine3d(bake.matrix()));
     mesh.triangleColours.clear();
-    writeFileAtomically(folder_ / "iv" / (name + ".off"), offText(mesh));
+    writeFileAtomically(folder_ / "iv" / (name + ".off"), io::offText(mesh));
     std::string xml = "<?xml version=\"1.0\" ?>\n<root>\n";
     if (body) {
       const Vector3 cog = bake * body->cog;

@@ -34,4 +34,9 @@ struct BodyXmlOptions {
 // so loading the XML gives these very values. Throws graspkit::Error naming the mesh file.
 std::string bodyXmlForMesh(const std::filesystem::path& mesh_file, const BodyXmlOptions& options);
 
+// Saves `mesh` as a GraspIt! body: FOLDER/NAME.off (coordinates exact) and FOLDER/NAME.xml, the
+// Body XML bodyXmlForMesh writes for it, each atomically. Returns the XML's path.
+std::filesystem::path saveBodyFiles(const std::filesystem::path& folder, const std::string& name,
+                                    const TriangleMesh& mesh, const BodyXmlOptions& options);
+
 }  // namespace graspkit
