@@ -1,0 +1,370 @@
+// Grasp datasets in HDF5 through its C API. Layout (docs/dataset.md):
+//   /grasps/transforms, /grasps/pregrasp_transforms   N x 4 x 4, mm
+//   /grasps/dofs/open, /grasps/dofs/closed             N x D
+//   /grasps/qualities/epsilon, .../volume              N
+//   /grasps/qualities/force_closure                    N, uint8
+//   /grasps/qualities/held                             N, int8 (-1: not validated)
+//   /grasps/contacts/offsets                           N + 1, uint64: grasp i's contacts are
+//                                                       rows offsets[i] .. offsets[i+1]
+//   /grasps/contacts/points, .../normals               M x 3, object frame
+//   /object/file, /object/name, /object/mass, /hand/file, /hand/name
+//   root attributes: schema_version, engine_version, units ("mm"), seed
+
+#include "graspkit/io/grasp_dataset_file.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <mutex>
+
+#include "graspkit/error.hpp"
+
+namespace graspkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSchemaVersion = 1;
+
+// The HDF5 library this Debian build gives may not be thread-safe: one call at a time.
+std::mutex& hdf5Mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// An HDF5 identifier closed at scope exit by its own close function.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  operator hid_t() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+class Writer {
+ public:
+  Writer(const fs::path& file, hid_t handle) : file_(file), handle_(handle) {
+    // Object timestamps off: the same dataset gives the same bytes.
+    H5Pset_obj_track_times(group_creation_, 0);
+    H5Pset_obj_track_times(dataset_creation_, 0);
+  }
+
+  hid_t group(hid_t parent, const char* name) {
+    groups_.push_back(std::make_unique<Handle>(
+        H5Gcreate2(parent, name, H5P_DEFAULT, group_creation_, H5P_DEFAULT), &H5Gclose));
+    check(*groups_.back(), name);
+    return *groups_.back();
+  }
+
+  void array(hid_t parent, const char* name, hid_t type, const std::vector<hsize_t>& shape,
+             const void* data) {
+    Handle space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
+                 &H5Sclose);
+    Handle set(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, dataset_creation_, H5P_DEFAULT),
+               &H5Dclose);
+    check(set, name);
+    hsize_t count = 1;
+    for (hsize_t n : shape) count *= n;
+    if (count > 0) check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+  }
+
+  void scalar(hid_t parent, const char* name, hid_t type, const void* data) {
+    Handle space(H5Screate(H5S_SCALAR), &H5Sclose);
+    Handle set(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, dataset_creation_, H5P_DEFAULT),
+               &H5Dclose);
+    check(set, name);
+    check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+  }
+
+  void text(hid_t parent, const char* name, const std::string& value) {
+    Handle type(stringType(), &H5Tclose);
+    const char* data = value.c_str();
+    scalar(parent, name, type, &data);
+  }
+
+  void attribute(const char* name, hid_t type, const void* data) {
+    Handle space(H5Screate(H5S_SCALAR), &H5Sclose);
+    Handle attr(H5Acreate2(handle_, name, type, space, H5P_DEFAULT, H5P_DEFAULT), &H5Aclose);
+    check(attr, name);
+    check(H5Awrite(attr, type, data), name);
+  }
+
+  static hid_t stringType() {
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    return type;
+  }
+
+ private:
+  void check(long long status, const char* what) const {
+    if (status < 0)
+      throw Error(SourceLocation{file_.string()}, fmt::format("HDF5 could not write '{}'", what));
+  }
+
+  fs::path file_;
+  hid_t handle_;
+  Handle group_creation_{H5Pcreate(H5P_GROUP_CREATE), &H5Pclose};
+  Handle dataset_creation_{H5Pcreate(H5P_DATASET_CREATE), &H5Pclose};
+  std::vector<std::unique_ptr<Handle>> groups_;
+};
+
+std::vector<double> poses(const std::vector<DatasetGrasp>& grasps, bool closed) {
+  std::vector<double> out;
+  for (const DatasetGrasp& g : grasps) {
+    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = (closed ? g.grasp : g.pregrasp).matrix();
+    out.insert(out.end(), m.data(), m.data() + 16);
+  }
+  return out;
+}
+
+void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) {
+  Writer w(file, handle);
+  const auto& grasps = dataset.grasps;
+  const hsize_t n = grasps.size();
+  const hsize_t dofs = grasps.empty() ? 0 : grasps.front().openDofs.size();
+  for (const DatasetGrasp& g : grasps)
+    if (g.openDofs.size() != dofs || g.closedDofs.size() != dofs)
+      throw Error(SourceLocation{file.string()}, "the grasps disagree on the hand's DOF count");
+
+  const int schema = kSchemaVersion;
+  w.attribute("schema_version", H5T_NATIVE_INT, &schema);
+  Handle string_type(Writer::stringType(), &H5Tclose);
+  const char* version = dataset.engineVersion.c_str();
+  w.attribute("engine_version", string_type, &version);
+  const char* units = "mm";
+  w.attribute("units", string_type, &units);
+  w.attribute("seed", H5T_NATIVE_UINT64, &dataset.seed);
+
+  const hid_t object = w.group(handle, "object");
+  w.text(object, "file", dataset.objectFile);
+  w.text(object, "name", dataset.objectName);
+  w.scalar(object, "mass", H5T_NATIVE_DOUBLE, &dataset.objectMass);
+  const hid_t hand = w.group(handle, "hand");
+  w.text(hand, "file", dataset.handFile);
+  w.text(hand, "name", dataset.handName);
+
+  const hid_t root = w.group(handle, "grasps");
+  w.array(root, "transforms", H5T_NATIVE_DOUBLE, {n, 4, 4}, poses(grasps, true).data());
+  w.array(root, "pregrasp_transforms", H5T_NATIVE_DOUBLE, {n, 4, 4}, poses(grasps, false).data());
+  const hid_t dof_group = w.group(root, "dofs");
+  std::vector<double> open, closed;
+  for (const DatasetGrasp& g : grasps) {
+    open.insert(open.end(), g.openDofs.begin(), g.openDofs.end());
+    closed.insert(closed.end(), g.closedDofs.begin(), g.closedDofs.end());
+  }
+  w.array(dof_group, "open", H5T_NATIVE_DOUBLE, {n, dofs}, open.data());
+  w.array(dof_group, "closed", H5T_NATIVE_DOUBLE, {n, dofs}, closed.data());
+
+  const hid_t qualities = w.group(root, "qualities");
+  std::vector<double> epsilon, volume;
+  std::vector<std::uint8_t> force_closure;
+  std::vector<std::int8_t> held;
+  for (const DatasetGrasp& g : grasps) {
+    epsilon.push_back(g.epsilon);
+    volume.push_back(g.volume);
+    force_closure.push_back(g.forceClosure ? 1 : 0);
+    held.push_back(static_cast<std::int8_t>(g.held));
+  }
+  w.array(qualities, "epsilon", H5T_NATIVE_DOUBLE, {n}, epsilon.data());
+  w.array(qualities, "volume", H5T_NATIVE_DOUBLE, {n}, volume.data());
+  w.array(qualities, "force_closure", H5T_NATIVE_UINT8, {n}, force_closure.data());
+  w.array(qualities, "held", H5T_NATIVE_INT8, {n}, held.data());
+
+  const hid_t contacts = w.group(root, "contacts");
+  std::vector<std::uint64_t> offsets{0};
+  std::vector<double> points, normals;
+  for (const DatasetGrasp& g : grasps) {
+    if (g.contactPoints.size() != g.contactNormals.size())
+      throw Error(SourceLocation{file.string()}, "a grasp has unequal contact points and normals");
+    for (std::size_t k = 0; k < g.contactPoints.size(); ++k) {
+      points.insert(points.end(), g.contactPoints[k].data(), g.contactPoints[k].data() + 3);
+      normals.insert(normals.end(), g.contactNormals[k].data(), g.contactNormals[k].data() + 3);
+    }
+    offsets.push_back(offsets.back() + g.contactPoints.size());
+  }
+  w.array(contacts, "offsets", H5T_NATIVE_UINT64, {n + 1}, offsets.data());
+  w.array(contacts, "points", H5T_NATIVE_DOUBLE, {offsets.back(), 3}, points.data());
+  w.array(contacts, "normals", H5T_NATIVE_DOUBLE, {offsets.back(), 3}, normals.data());
+}
+
+class Reader {
+ public:
+  Reader(const fs::path& file, hid_t handle) : file_(file), handle_(handle) {}
+
+  // The dataset at `path`, its shape checked against `shape` (0: any length), read as `type`.
+  template <class T>
+  std::vector<T> array(const char* path, hid_t type, std::vector<hsize_t> shape) {
+    Handle set(H5Dopen2(handle_, path, H5P_DEFAULT), &H5Dclose);
+    if (!set.valid()) fail(path, "is missing");
+    Handle space(H5Dget_space(set), &H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    if (dims.size() != shape.size()) fail(path, fmt::format("has {} dimensions", dims.size()));
+    hsize_t count = 1;
+    for (std::size_t k = 0; k < dims.size(); ++k) {
+      if (shape[k] != 0 && dims[k] != shape[k])
+        fail(path, fmt::format("has {} rows along dimension {}, not {}", dims[k], k, shape[k]));
+      count *= dims[k];
+    }
+    std::vector<T> data(count);
+    if (count > 0 && H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+      fail(path, "cannot be read");
+    last_dims_ = dims;
+    return data;
+  }
+
+  std::string text(const char* path) {
+    Handle set(H5Dopen2(handle_, path, H5P_DEFAULT), &H5Dclose);
+    if (!set.valid()) fail(path, "is missing");
+    Handle type(Writer::stringType(), &H5Tclose);
+    char* value = nullptr;
+    if (H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0 || !value)
+      fail(path, "is not a string");
+    std::string out(value);
+    Handle space(H5Dget_space(set), &H5Sclose);
+    H5Dvlen_reclaim(type, space, H5P_DEFAULT, &value);
+    return out;
+  }
+
+  double number(const char* path) { return array<double>(path, H5T_NATIVE_DOUBLE, {}).at(0); }
+
+  template <class T>
+  T attribute(const char* name, hid_t type) {
+    Handle attr(H5Aopen(handle_, name, H5P_DEFAULT), &H5Aclose);
+    if (!attr.valid()) fail(name, "(an attribute of the file) is missing");
+    T value{};
+    if (H5Aread(attr, type, &value) < 0) fail(name, "cannot be read");
+    return value;
+  }
+
+  std::string textAttribute(const char* name) {
+    Handle attr(H5Aopen(handle_, name, H5P_DEFAULT), &H5Aclose);
+    if (!attr.valid()) fail(name, "(an attribute of the file) is missing");
+    Handle type(Writer::stringType(), &H5Tclose);
+    char* value = nullptr;
+    if (H5Aread(attr, type, &value) < 0 || !value) fail(name, "is not a string");
+    std::string out(value);
+    H5free_memory(value);
+    return out;
+  }
+
+  const std::vector<hsize_t>& lastDims() const { return last_dims_; }
+
+  [[noreturn]] void fail(const char* path, const std::string& what) const {
+    throw Error(SourceLocation{file_.string(), 0, path}, fmt::format("'{}' {}", path, what));
+  }
+
+ private:
+  fs::path file_;
+  hid_t handle_;
+  std::vector<hsize_t> last_dims_;
+};
+
+Transform poseAt(const std::vector<double>& values, std::size_t i) {
+  Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m;
+  std::copy(values.begin() + static_cast<long>(16 * i),
+            values.begin() + static_cast<long>(16 * i + 16), m.data());
+  Transform pose;
+  pose.matrix() = m;
+  return pose;
+}
+
+GraspDataset readFile(const fs::path& file, hid_t handle) {
+  Reader r(file, handle);
+  if (const int schema = r.attribute<int>("schema_version", H5T_NATIVE_INT);
+      schema != kSchemaVersion)
+    r.fail("schema_version", fmt::format("is {}; this graspkit reads {}", schema, kSchemaVersion));
+  GraspDataset dataset;
+  dataset.engineVersion = r.textAttribute("engine_version");
+  dataset.seed = r.attribute<std::uint64_t>("seed", H5T_NATIVE_UINT64);
+  dataset.objectFile = r.text("/object/file");
+  dataset.objectName = r.text("/object/name");
+  dataset.objectMass = r.number("/object/mass");
+  dataset.handFile = r.text("/hand/file");
+  dataset.handName = r.text("/hand/name");
+
+  const auto closed_poses = r.array<double>("/grasps/transforms", H5T_NATIVE_DOUBLE, {0, 4, 4});
+  const hsize_t n = r.lastDims()[0];
+  const auto open_poses =
+      r.array<double>("/grasps/pregrasp_transforms", H5T_NATIVE_DOUBLE, {n, 4, 4});
+  const auto open = r.array<double>("/grasps/dofs/open", H5T_NATIVE_DOUBLE, {n, 0});
+  const hsize_t dofs = r.lastDims()[1];
+  const auto closed = r.array<double>("/grasps/dofs/closed", H5T_NATIVE_DOUBLE, {n, dofs});
+  const auto epsilon = r.array<double>("/grasps/qualities/epsilon", H5T_NATIVE_DOUBLE, {n});
+  const auto volume = r.array<double>("/grasps/qualities/volume", H5T_NATIVE_DOUBLE, {n});
+  const auto force_closure =
+      r.array<std::uint8_t>("/grasps/qualities/force_closure", H5T_NATIVE_UINT8, {n});
+  const auto held = r.array<std::int8_t>("/grasps/qualities/held", H5T_NATIVE_INT8, {n});
+  const auto offsets =
+      r.array<std::uint64_t>("/grasps/contacts/offsets", H5T_NATIVE_UINT64, {n + 1});
+  const hsize_t m = offsets.back();
+  const auto points = r.array<double>("/grasps/contacts/points", H5T_NATIVE_DOUBLE, {m, 3});
+  const auto normals = r.array<double>("/grasps/contacts/normals", H5T_NATIVE_DOUBLE, {m, 3});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (offsets[i] > offsets[i + 1] || offsets[i + 1] > m)
+      r.fail("/grasps/contacts/offsets", "is not increasing within the contacts");
+    DatasetGrasp g;
+    g.grasp = poseAt(closed_poses, i);
+    g.pregrasp = poseAt(open_poses, i);
+    g.openDofs.assign(open.begin() + static_cast<long>(i * dofs),
+                      open.begin() + static_cast<long>((i + 1) * dofs));
+    g.closedDofs.assign(closed.begin() + static_cast<long>(i * dofs),
+                        closed.begin() + static_cast<long>((i + 1) * dofs));
+    g.epsilon = epsilon[i];
+    g.volume = volume[i];
+    g.forceClosure = force_closure[i] != 0;
+    g.held = held[i];
+    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+      g.contactPoints.emplace_back(points[3 * k], points[3 * k + 1], points[3 * k + 2]);
+      g.contactNormals.emplace_back(normals[3 * k], normals[3 * k + 1], normals[3 * k + 2]);
+    }
+    dataset.grasps.push_back(std::move(g));
+  }
+  return dataset;
+}
+
+}  // namespace
+
+void saveGraspDataset(const GraspDataset& dataset, const fs::path& file) {
+  const std::lock_guard lock(hdf5Mutex());
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become graspkit::Error, not stderr
+  const fs::path temporary =
+      file.parent_path() / fmt::format(".{}.{}.tmp", file.filename().string(), ::getpid());
+  try {
+    {
+      Handle handle(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                    &H5Fclose);
+      if (!handle.valid())
+        throw Error(SourceLocation{file.string()}, "HDF5 cannot create the file");
+      writeFile(dataset, file, handle);
+    }
+    fs::rename(temporary, file);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+GraspDataset loadGraspDataset(const fs::path& file) {
+  const std::lock_guard lock(hdf5Mutex());
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  if (!fs::is_regular_file(file))
+    throw Error(SourceLocation{file.string()}, "no such grasp dataset file");
+  Handle handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), &H5Fclose);
+  if (!handle.valid()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
+  return readFile(file, handle);
+}
+
+}  // namespace graspkit
