@@ -225,6 +225,25 @@ void addObjectsCommand(CLI::App& app, ObjectsOptions& options);
 // A file that exists and differs needs --force; without it nothing is written.
 int runObjects(const ObjectsOptions& options, bool quiet, std::ostream& out);
 
+struct BatchOptions {
+  std::filesystem::path hand;
+  std::filesystem::path objects;  // a folder of body files or a list file
+  std::filesystem::path out;
+  LoadFlags load;
+  int grasps = 20;
+  std::int64_t steps = 40000;
+  std::optional<double> secondsPerObject;
+  bool validate = false;
+  double validateSeconds = 2.0;
+  std::uint64_t seed = 1;
+  std::string shard;  // K/N
+  double objectTimeout = 1800.0;
+};
+
+void addBatchCommand(CLI::App& app, BatchOptions& options);
+// Exit status 1 when some object of the share failed (after its retry), 0 otherwise.
+int runBatch(const BatchOptions& options, bool quiet, std::ostream& out);
+
 // "1,2.5,-3" -> {1, 2.5, -3}; throws graspkit::Error naming `option` for anything else
 // (empty items, trailing text, NaN or infinity).
 std::vector<double> parseNumberList(const std::string& text, const std::string& option);

@@ -60,6 +60,7 @@ struct CommandOptions {
   graspkit::cli::SimulateOptions simulate;
   graspkit::cli::ValidateOptions validate;
   graspkit::cli::ObjectsOptions objects;
+  graspkit::cli::BatchOptions batch;
 };
 
 int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool verbose) {
@@ -78,6 +79,7 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("simulate")) return runSimulate(o.simulate, std::cout);
     if (app.got_subcommand("validate")) return runValidate(o.validate, std::cout);
     if (app.got_subcommand("objects")) return runObjects(o.objects, quiet, std::cout);
+    if (app.got_subcommand("batch")) return runBatch(o.batch, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
     return 1;
@@ -133,6 +135,7 @@ int main(int argc, char** argv) {
   graspkit::cli::addSimulateCommand(app, options.simulate);
   graspkit::cli::addValidateCommand(app, options.validate);
   graspkit::cli::addObjectsCommand(app, options.objects);
+  graspkit::cli::addBatchCommand(app, options.batch);
 
   try {
     app.parse(argc, argv);

@@ -208,17 +208,10 @@ void addValidation(const PlanningRequest& request, const std::vector<PlannedGras
   result["held_count"] = held;
 }
 
-std::string duration(double seconds) {
-  if (!(seconds >= 0) || seconds > 359999) return "--:--";
-  const int s = static_cast<int>(std::lround(seconds));
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
-                   : fmt::format("{}:{:02}", s / 60, s % 60);
-}
-
 std::string progressText(const PlannerProgress& p) {
   const double eta = p.fraction > 0 ? p.seconds * (1.0 - p.fraction) / p.fraction : -1.0;
   std::string text = fmt::format("{:>3.0f}%  {} steps  {} elapsed, {} left", 100.0 * p.fraction,
-                                 p.steps, duration(p.seconds), duration(eta));
+                                 p.steps, clockTime(p.seconds), clockTime(eta));
   if (p.forceClosure >= 0)
     text += fmt::format("  {} grasps, {} force closure", p.states, p.forceClosure);
   else

@@ -70,4 +70,11 @@ void ProgressReporter::show(double fraction, std::string_view text, bool last) {
   anything_shown_ = true;
 }
 
+std::string clockTime(double seconds) {
+  if (!(seconds >= 0) || seconds > 359999) return "--:--";
+  const int s = static_cast<int>(std::lround(seconds));
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+                   : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
 }  // namespace graspkit::cli

@@ -11,6 +11,9 @@
 
 namespace graspkit::cli {
 
+// "m:ss" or "h:mm:ss"; "--:--" for a negative or huge (unknown) time.
+std::string clockTime(double seconds);
+
 class ProgressReporter {
  public:
   struct Settings {
