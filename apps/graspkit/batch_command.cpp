@@ -1,35 +1,27 @@
 // graspkit batch: plan (and optionally validate) grasps on many objects with one hand, one HDF5
 // dataset file per object (io/grasp_dataset_file.hpp), with a manifest that makes a re-run
-// resume. Each object runs in a child process, so that a crash, a hang or an error on one object
-// is recorded against it and the batch goes on.
+// resume. Each object runs in a child process (batch_object.cpp), so that a crash, a hang or an
+// error on one object is recorded against it and the batch goes on; under mpirun the objects are
+// shared over the ranks (batch_mpi.cpp).
 
 #include <fmt/format.h>
-#include <poll.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "batch_mpi.hpp"
+#include "batch_object.hpp"
 #include "commands.hpp"
 #include "graspkit/error.hpp"
-#include "graspkit/grasp_validation.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/grasp_dataset_file.hpp"
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/io/output_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/planning/planner.hpp"
-#include "graspkit/planning/search_space.hpp"
-#include "graspkit/registry.hpp"
 #include "graspkit/version.hpp"
-#include "graspkit/world.hpp"
 #include "progress_reporter.hpp"
 
 namespace graspkit::cli {
@@ -37,7 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 constexpr int kManifestVersion = 1;
 constexpr int kMaxAttempts = 2;  // a failed object is retried once
@@ -133,172 +124,6 @@ json settingsJson(const BatchOptions& options) {
   return settings;
 }
 
-// One object's dataset: the hand over the object at the origin, a plan, its grasps closed and
-// measured, optionally validated. Runs in the child.
-GraspDataset planObject(const BatchOptions& options, const fs::path& object_file) {
-  const LoadOptions load = options.load.options();
-  auto world = std::make_shared<World>(loadAnyFile(options.hand, load));
-  if (world->robotCount() != 1 || !world->bodies().empty())
-    throw Error(SourceLocation{options.hand.string()}, "--hand: not a robot file");
-  Body object;
-  object.model = loadBodyFile(object_file);
-  object.kind = BodyKind::Graspable;
-  object.name = object.model->name.empty() ? object_file.stem().string() : object.model->name;
-  object.filename = object_file;
-  const int object_index = world->addBody(object);
-  Transform above = Transform::Identity();
-  above.translation() = Vector3(0, 0, 300);
-  world->setRobotPose(0, above);
-
-  PlanningRequest request;
-  request.world = world;
-  request.robot = 0;
-  request.object = BodyRef::body(object_index);
-  request.position = parsePositionSpace("axis-angle");
-  request.posture = parsePostureSpace("eigen");
-  request.energy = "contact";
-  request.seed = options.seed;
-  request.threads = 1;  // objects run side by side; one thread each keeps plans reproducible
-  request.bestListSize = options.grasps;
-  request.options = {{"mode", "restarts"}};
-  auto planner = Registry::global().makePlanner("simann", request);
-  PlanningBudget budget;
-  if (options.secondsPerObject)
-    budget.seconds = *options.secondsPerObject;
-  else
-    budget.steps = options.steps;
-  PlanningRun run = runPlanner(*planner, budget);
-  finishGrasps(request, run.grasps, 1);
-
-  std::vector<int> held(run.grasps.size(), -1);
-  if (options.validate) {
-    ValidationRequest validation;
-    validation.seconds = options.validateSeconds;
-    std::vector<World> worlds;
-    for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(request, g));
-    const auto labels = validateGrasps(worlds, 0, object_index, validation, 1);
-    for (std::size_t i = 0; i < labels.size(); ++i) held[i] = labels[i].held ? 1 : 0;
-  }
-
-  GraspDataset dataset;
-  dataset.objectFile = object_file.string();
-  dataset.objectName = object.name;
-  dataset.objectMass = object.model->mass;
-  dataset.handFile = options.hand.string();
-  dataset.handName = world->robot(0).name();
-  dataset.engineVersion = engineVersion();
-  dataset.seed = options.seed;
-  const Transform to_object = world->bodies()[object_index].pose.inverse();
-  const BodyRef object_ref = BodyRef::body(object_index);
-  for (std::size_t i = 0; i < run.grasps.size(); ++i) {
-    const PlannedGrasp& g = run.grasps[i];
-    DatasetGrasp d;
-    d.pregrasp = to_object * g.pose;
-    d.grasp = to_object * g.closed.pose;
-    d.openDofs = g.dofs;
-    d.closedDofs = g.closed.dofs;
-    d.epsilon = g.epsilon;
-    d.volume = g.volume;
-    d.forceClosure = g.forceClosure;
-    d.held = held[i];
-    for (const Contact& c : g.contactList) {
-      // The normal points into body1: out of the object when the object is body2.
-      const bool object_second = c.body2 == object_ref;
-      d.contactPoints.push_back(to_object * (object_second ? c.position2 : c.position1));
-      d.contactNormals.push_back(to_object.linear() * (object_second ? c.normal : -c.normal));
-    }
-    dataset.grasps.push_back(std::move(d));
-  }
-  return dataset;
-}
-
-struct Outcome {
-  bool done = false;
-  std::string error;
-  int grasps = 0, forceClosure = 0, held = 0;
-  double seconds = 0.0;
-};
-
-// Runs one object in a child process: its dataset file is written by the child, its summary
-// comes back through a pipe as one JSON line. A crash, a kill or a timeout is a failure.
-Outcome runObject(const BatchOptions& options, const fs::path& object_file, const fs::path& out) {
-  const auto start = Clock::now();
-  int channel[2];
-  if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
-  std::cout.flush();
-  std::cerr.flush();
-  const pid_t child = ::fork();
-  if (child < 0) throw Error("batch: cannot start a process for an object");
-  if (child == 0) {
-    ::close(channel[0]);
-    json summary;
-    int status = 0;
-    try {
-      const GraspDataset dataset = planObject(options, object_file);
-      saveGraspDataset(dataset, out);
-      int fc = 0, held = 0;
-      for (const DatasetGrasp& g : dataset.grasps) {
-        fc += g.forceClosure ? 1 : 0;
-        held += g.held == 1 ? 1 : 0;
-      }
-      summary = {{"grasps", dataset.grasps.size()}, {"force_closure", fc}, {"held", held}};
-    } catch (const std::exception& e) {
-      summary = {{"error", e.what()}};
-      status = 1;
-    }
-    const std::string text = summary.dump() + "\n";
-    [[maybe_unused]] const auto written = ::write(channel[1], text.data(), text.size());
-    ::close(channel[1]);
-    std::fflush(nullptr);
-    ::_exit(status);
-  }
-  ::close(channel[0 + 1]);
-  std::string text;
-  bool timed_out = false;
-  const double limit = options.objectTimeout;
-  for (;;) {
-    const double left = limit - std::chrono::duration<double>(Clock::now() - start).count();
-    if (left <= 0) {
-      timed_out = true;
-      ::kill(child, SIGKILL);
-      break;
-    }
-    pollfd p{channel[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, 1.0) * 1000) + 1);
-    if (ready <= 0) continue;
-    char buffer[4096];
-    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
-    if (n <= 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::close(channel[0]);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  Outcome outcome;
-  outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (timed_out) {
-    outcome.error = fmt::format("timed out after {:g} s (--object-timeout)", limit);
-  } else if (WIFSIGNALED(status)) {
-    outcome.error = fmt::format("the object's process died of signal {} ({})", WTERMSIG(status),
-                                strsignal(WTERMSIG(status)));
-  } else {
-    const json summary = json::parse(text, nullptr, false);
-    if (summary.is_discarded() || !summary.is_object()) {
-      outcome.error = fmt::format("the object's process ended ({}) without a report",
-                                  WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-    } else if (summary.contains("error")) {
-      outcome.error = summary["error"].get<std::string>();
-    } else {
-      outcome.done = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(out);
-      outcome.grasps = summary.value("grasps", 0);
-      outcome.forceClosure = summary.value("force_closure", 0);
-      outcome.held = summary.value("held", 0);
-      if (!outcome.done) outcome.error = "the object's process wrote no dataset file";
-    }
-  }
-  return outcome;
-}
-
 }  // namespace
 
 void addBatchCommand(CLI::App& app, BatchOptions& options) {
@@ -355,97 +180,167 @@ void removeStaleTemporaries(const fs::path& folder) {
   }
 }
 
+// What a run of the batch keeps: the objects, this share of them, and on the rank that writes it,
+// the manifest and the counts for the summary.
+class BatchRun {
+ public:
+  BatchRun(const BatchOptions& options, bool quiet)
+      : options_(options),
+        quiet_(quiet),
+        shard_(shardOf(options.shard)),
+        files_(objectFiles(options.objects)),
+        names_(objectNames(files_)) {}
+
+  const fs::path& file(std::size_t i) const { return files_[i]; }
+  fs::path dataset(std::size_t i) const { return options_.out / "grasps" / (names_[i] + ".h5"); }
+
+  // Reads (or starts) the manifest and returns this share's objects still to run; the others
+  // are counted as settled. Only the rank that writes the manifest calls it.
+  std::vector<std::size_t> prepare() {
+    fs::create_directories(options_.out / "grasps");
+    removeStaleTemporaries(options_.out / "grasps");
+    manifest_file_ = shard_.count == 1 ? options_.out / "manifest.json"
+                                       : options_.out / fmt::format("manifest-{}-of-{}.json",
+                                                                    shard_.index + 1, shard_.count);
+    const json settings = settingsJson(options_);
+    manifest_ = {{"manifest_version", kManifestVersion},
+                 {"engine_version", engineVersion()},
+                 {"settings", settings},
+                 {"shard", {{"index", shard_.index + 1}, {"count", shard_.count}}},
+                 {"objects", json::object()}};
+    if (fs::exists(manifest_file_)) {
+      const json previous = json::parse(readInputFile(manifest_file_), nullptr, false);
+      if (previous.is_discarded() || !previous.contains("objects"))
+        throw Error(SourceLocation{manifest_file_.string()}, "not a batch manifest");
+      if (previous.value("settings", json()) != settings)
+        throw Error(SourceLocation{manifest_file_.string()},
+                    fmt::format("the folder holds a batch run with other settings ({}); use "
+                                "another --out, or the same settings to resume",
+                                previous.value("settings", json()).dump()));
+      manifest_["objects"] = previous["objects"];
+    }
+    std::vector<std::size_t> pending;
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+      if (static_cast<int>(i % static_cast<std::size_t>(shard_.count)) != shard_.index) continue;
+      ++share_;
+      const json& entry = entryOf(i);
+      const std::string status = entry.value("status", "");
+      if (status == "done" && fs::exists(dataset(i))) {
+        ++done_, ++settled_;
+      } else if (status == "failed" && entry.value("attempts", 0) >= kMaxAttempts) {
+        ++failed_, ++settled_;
+        failures_.push_back(fmt::format("{}: {}", names_[i], entry.value("error", "")));
+      } else {
+        pending.push_back(i);
+      }
+    }
+    pending_ = pending.size();
+    writeFileAtomically(manifest_file_, manifest_.dump(2) + "\n");
+    return pending;
+  }
+
+  // Enters one object's outcome in the manifest (written at once) and reports progress.
+  void record(std::size_t i, const ObjectOutcome& outcome) {
+    json& entry = entryOf(i);
+    const int attempts = entry.value("attempts", 0) + 1;
+    entry = {{"file", files_[i].string()},
+             {"status", outcome.done ? "done" : "failed"},
+             {"attempts", attempts},
+             {"seconds", outcome.seconds}};
+    if (outcome.done) {
+      ++done_;
+      entry["dataset"] = (fs::path("grasps") / (names_[i] + ".h5")).string();
+      entry["grasps"] = outcome.grasps;
+      entry["force_closure"] = outcome.forceClosure;
+      if (options_.validate) entry["held"] = outcome.held;
+    } else {
+      ++failed_;
+      entry["error"] = outcome.error;
+      failures_.push_back(fmt::format("{}: {}", names_[i], outcome.error));
+    }
+    writeFileAtomically(manifest_file_, manifest_.dump(2) + "\n");
+    ++ran_;
+    spent_ += outcome.seconds;
+    if (quiet_) return;
+    const double eta = spent_ / ran_ * static_cast<double>(pending_ - ran_) / workers_;
+    std::cerr << fmt::format(
+        "graspkit: [{}/{}] {}: {} ({:.1f} s), {} left\n", ran_, pending_, names_[i],
+        outcome.done
+            ? fmt::format("{} grasps, {} force closure", outcome.grasps, outcome.forceClosure)
+            : "failed: " + outcome.error,
+        outcome.seconds, clockTime(eta));
+  }
+
+  void setWorkers(int workers) { workers_ = std::max(1, workers); }
+
+  // The summary; the exit status (1 when some object failed).
+  int summary(std::ostream& out) const {
+    out << fmt::format(
+        "{} objects: {} done, {} failed{}; manifest {}\n", share_, done_, failed_,
+        settled_ ? fmt::format(" ({} already settled before this run)", settled_) : "",
+        manifest_file_.string());
+    for (const std::string& failure : failures_) out << "  failed " << failure << "\n";
+    return failed_ > 0 ? 1 : 0;
+  }
+
+ private:
+  json& entryOf(std::size_t i) {
+    json& entry = manifest_["objects"][names_[i]];
+    if (!entry.is_object()) entry = json::object();
+    return entry;
+  }
+
+  const BatchOptions& options_;
+  bool quiet_;
+  Shard shard_;
+  std::vector<fs::path> files_;
+  std::vector<std::string> names_;
+  fs::path manifest_file_;
+  json manifest_;
+  std::size_t share_ = 0, pending_ = 0, ran_ = 0;
+  int done_ = 0, failed_ = 0, settled_ = 0, workers_ = 1;
+  double spent_ = 0.0;
+  std::vector<std::string> failures_;
+};
+
+int runSerially(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  for (std::size_t i : run.prepare())
+    run.record(i, runObject(options, run.file(i), run.dataset(i)));
+  return run.summary(out);
+}
+
+// Every rank plans; rank 0 also keeps the manifest. An error on rank 0 before the objects are
+// shared out (a manifest with other settings) stops every rank.
+int runOverMpi(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  const MpiBatch mpi;
+  std::vector<std::size_t> pending;
+  std::string error;
+  if (mpi.rank() == 0) {
+    try {
+      pending = run.prepare();
+      run.setWorkers(mpi.size());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (!mpi.agree(error.empty())) {
+    if (mpi.rank() == 0) throw Error(error);
+    return 1;
+  }
+  mpi.run(
+      pending,
+      [&](std::size_t i, const std::function<void()>& serve) {
+        return runObject(options, run.file(i), run.dataset(i), serve);
+      },
+      [&](std::size_t i, const ObjectOutcome& outcome) { run.record(i, outcome); });
+  return mpi.rank() == 0 ? run.summary(out) : 0;
+}
+
 }  // namespace
 
 int runBatch(const BatchOptions& options, bool quiet, std::ostream& out) {
-  const Shard shard = shardOf(options.shard);
-  const std::vector<fs::path> files = objectFiles(options.objects);
-  const std::vector<std::string> names = objectNames(files);
-  fs::create_directories(options.out / "grasps");
-  removeStaleTemporaries(options.out / "grasps");
-  const fs::path manifest_file =
-      shard.count == 1
-          ? options.out / "manifest.json"
-          : options.out / fmt::format("manifest-{}-of-{}.json", shard.index + 1, shard.count);
-  const json settings = settingsJson(options);
-  json manifest = {{"manifest_version", kManifestVersion},
-                   {"engine_version", engineVersion()},
-                   {"settings", settings},
-                   {"shard", {{"index", shard.index + 1}, {"count", shard.count}}},
-                   {"objects", json::object()}};
-  if (fs::exists(manifest_file)) {
-    const json previous = json::parse(readInputFile(manifest_file), nullptr, false);
-    if (previous.is_discarded() || !previous.contains("objects"))
-      throw Error(SourceLocation{manifest_file.string()}, "not a batch manifest");
-    if (previous.value("settings", json()) != settings)
-      throw Error(SourceLocation{manifest_file.string()},
-                  fmt::format("the folder holds a batch run with other settings ({}); use "
-                              "another --out, or the same settings to resume",
-                              previous.value("settings", json()).dump()));
-    manifest["objects"] = previous["objects"];
-  }
-
-  std::vector<std::size_t> share;
-  for (std::size_t i = 0; i < files.size(); ++i)
-    if (static_cast<int>(i % static_cast<std::size_t>(shard.count)) == shard.index)
-      share.push_back(i);
-  int done = 0, failed = 0, skipped = 0, ran = 0;
-  double spent = 0.0;
-  std::vector<std::string> failures;
-  for (std::size_t k = 0; k < share.size(); ++k) {
-    const std::size_t i = share[k];
-    const std::string& name = names[i];
-    const fs::path dataset = options.out / "grasps" / (name + ".h5");
-    json& entry = manifest["objects"][name];
-    if (!entry.is_object()) entry = json::object();
-    const std::string status = entry.value("status", "");
-    const int attempts = entry.value("attempts", 0);
-    if ((status == "done" && fs::exists(dataset)) ||
-        (status == "failed" && attempts >= kMaxAttempts)) {
-      ++skipped;
-      if (status == "done")
-        ++done;
-      else {
-        ++failed;
-        failures.push_back(fmt::format("{}: {}", name, entry.value("error", "")));
-      }
-      continue;
-    }
-    const Outcome outcome = runObject(options, files[i], dataset);
-    ++ran;
-    spent += outcome.seconds;
-    entry = {{"file", files[i].string()},
-             {"status", outcome.done ? "done" : "failed"},
-             {"attempts", attempts + 1},
-             {"seconds", outcome.seconds}};
-    if (outcome.done) {
-      ++done;
-      entry["dataset"] = fs::path("grasps") / (name + ".h5");
-      entry["grasps"] = outcome.grasps;
-      entry["force_closure"] = outcome.forceClosure;
-      if (options.validate) entry["held"] = outcome.held;
-    } else {
-      ++failed;
-      entry["error"] = outcome.error;
-      failures.push_back(fmt::format("{}: {}", name, outcome.error));
-    }
-    writeFileAtomically(manifest_file, manifest.dump(2) + "\n");
-    if (!quiet) {
-      const double eta = spent / ran * static_cast<double>(share.size() - k - 1);
-      std::cerr << fmt::format(
-          "graspkit: [{}/{}] {}: {} ({:.1f} s), {} left\n", k + 1, share.size(), name,
-          outcome.done
-              ? fmt::format("{} grasps, {} force closure", outcome.grasps, outcome.forceClosure)
-              : "failed: " + outcome.error,
-          outcome.seconds, clockTime(eta));
-    }
-  }
-  writeFileAtomically(manifest_file, manifest.dump(2) + "\n");
-  out << fmt::format("{} objects: {} done, {} failed{}; manifest {}\n", share.size(), done, failed,
-                     skipped ? fmt::format(" ({} already settled before this run)", skipped) : "",
-                     manifest_file.string());
-  for (const std::string& failure : failures) out << "  failed " << failure << "\n";
-  return failed > 0 ? 1 : 0;
+  BatchRun run(options, quiet);
+  return launchedByMpi() ? runOverMpi(run, options, out) : runSerially(run, options, out);
 }
 
 }  // namespace graspkit::cli

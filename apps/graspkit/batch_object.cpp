@@ -1,0 +1,217 @@
+// One object of graspkit batch: the hand over the object, a plan, its grasps closed, measured and
+// optionally validated, the dataset written; all in a forked child, whose one-line JSON report
+// comes back through a pipe.
+
+#include "batch_object.hpp"
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <iostream>
+
+#include "graspkit/error.hpp"
+#include "graspkit/grasp_validation.hpp"
+#include "graspkit/io/body_file.hpp"
+#include "graspkit/io/grasp_dataset_file.hpp"
+#include "graspkit/io/world_file.hpp"
+#include "graspkit/planning/planner.hpp"
+#include "graspkit/planning/search_space.hpp"
+#include "graspkit/registry.hpp"
+#include "graspkit/version.hpp"
+#include "graspkit/world.hpp"
+
+namespace graspkit::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+json outcomeJson(const ObjectOutcome& o) {
+  return {{"done", o.done},     {"error", o.error},
+          {"grasps", o.grasps}, {"force_closure", o.forceClosure},
+          {"held", o.held},     {"seconds", o.seconds}};
+}
+
+ObjectOutcome outcomeFromJson(const json& j) {
+  ObjectOutcome o;
+  o.done = j.value("done", false);
+  o.error = j.value("error", "");
+  o.grasps = j.value("grasps", 0);
+  o.forceClosure = j.value("force_closure", 0);
+  o.held = j.value("held", 0);
+  o.seconds = j.value("seconds", 0.0);
+  return o;
+}
+
+namespace {
+
+// One object's dataset: the hand over the object at the origin, a plan, its grasps closed and
+// measured, optionally validated. Runs in the child.
+GraspDataset planObject(const BatchOptions& options, const fs::path& object_file) {
+  const LoadOptions load = options.load.options();
+  auto world = std::make_shared<World>(loadAnyFile(options.hand, load));
+  if (world->robotCount() != 1 || !world->bodies().empty())
+    throw Error(SourceLocation{options.hand.string()}, "--hand: not a robot file");
+  Body object;
+  object.model = loadBodyFile(object_file);
+  object.kind = BodyKind::Graspable;
+  object.name = object.model->name.empty() ? object_file.stem().string() : object.model->name;
+  object.filename = object_file;
+  const int object_index = world->addBody(object);
+  Transform above = Transform::Identity();
+  above.translation() = Vector3(0, 0, 300);
+  world->setRobotPose(0, above);
+
+  PlanningRequest request;
+  request.world = world;
+  request.robot = 0;
+  request.object = BodyRef::body(object_index);
+  request.position = parsePositionSpace("axis-angle");
+  request.posture = parsePostureSpace("eigen");
+  request.energy = "contact";
+  request.seed = options.seed;
+  request.threads = 1;  // objects run side by side; one thread each keeps plans reproducible
+  request.bestListSize = options.grasps;
+  request.options = {{"mode", "restarts"}};
+  auto planner = Registry::global().makePlanner("simann", request);
+  PlanningBudget budget;
+  if (options.secondsPerObject)
+    budget.seconds = *options.secondsPerObject;
+  else
+    budget.steps = options.steps;
+  PlanningRun run = runPlanner(*planner, budget);
+  finishGrasps(request, run.grasps, 1);
+
+  std::vector<int> held(run.grasps.size(), -1);
+  if (options.validate) {
+    ValidationRequest validation;
+    validation.seconds = options.validateSeconds;
+    std::vector<World> worlds;
+    for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(request, g));
+    const auto labels = validateGrasps(worlds, 0, object_index, validation, 1);
+    for (std::size_t i = 0; i < labels.size(); ++i) held[i] = labels[i].held ? 1 : 0;
+  }
+
+  GraspDataset dataset;
+  dataset.objectFile = object_file.string();
+  dataset.objectName = object.name;
+  dataset.objectMass = object.model->mass;
+  dataset.handFile = options.hand.string();
+  dataset.handName = world->robot(0).name();
+  dataset.engineVersion = engineVersion();
+  dataset.seed = options.seed;
+  const Transform to_object = world->bodies()[object_index].pose.inverse();
+  const BodyRef object_ref = BodyRef::body(object_index);
+  for (std::size_t i = 0; i < run.grasps.size(); ++i) {
+    const PlannedGrasp& g = run.grasps[i];
+    DatasetGrasp d;
+    d.pregrasp = to_object * g.pose;
+    d.grasp = to_object * g.closed.pose;
+    d.openDofs = g.dofs;
+    d.closedDofs = g.closed.dofs;
+    d.epsilon = g.epsilon;
+    d.volume = g.volume;
+    d.forceClosure = g.forceClosure;
+    d.held = held[i];
+    for (const Contact& c : g.contactList) {
+      // The normal points into body1: out of the object when the object is body2.
+      const bool object_second = c.body2 == object_ref;
+      d.contactPoints.push_back(to_object * (object_second ? c.position2 : c.position1));
+      d.contactNormals.push_back(to_object.linear() * (object_second ? c.normal : -c.normal));
+    }
+    dataset.grasps.push_back(std::move(d));
+  }
+  return dataset;
+}
+
+// Runs one object in a child process: its dataset file is written by the child, its summary
+// comes back through a pipe as one JSON line. A crash, a kill or a timeout is a failure.
+}  // namespace
+
+ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
+                        const fs::path& out, const std::function<void()>& while_waiting) {
+  const auto start = Clock::now();
+  int channel[2];
+  if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t child = ::fork();
+  if (child < 0) throw Error("batch: cannot start a process for an object");
+  if (child == 0) {
+    ::close(channel[0]);
+    json summary;
+    int status = 0;
+    try {
+      const GraspDataset dataset = planObject(options, object_file);
+      saveGraspDataset(dataset, out);
+      int fc = 0, held = 0;
+      for (const DatasetGrasp& g : dataset.grasps) {
+        fc += g.forceClosure ? 1 : 0;
+        held += g.held == 1 ? 1 : 0;
+      }
+      summary = {{"grasps", dataset.grasps.size()}, {"force_closure", fc}, {"held", held}};
+    } catch (const std::exception& e) {
+      summary = {{"error", e.what()}};
+      status = 1;
+    }
+    const std::string text = summary.dump() + "\n";
+    [[maybe_unused]] const auto written = ::write(channel[1], text.data(), text.size());
+    ::close(channel[1]);
+    std::fflush(nullptr);
+    ::_exit(status);
+  }
+  ::close(channel[0 + 1]);
+  std::string text;
+  bool timed_out = false;
+  const double limit = options.objectTimeout;
+  for (;;) {
+    const double left = limit - std::chrono::duration<double>(Clock::now() - start).count();
+    if (left <= 0) {
+      timed_out = true;
+      ::kill(child, SIGKILL);
+      break;
+    }
+    if (while_waiting) while_waiting();
+    pollfd p{channel[0], POLLIN, 0};
+    const double wait = while_waiting ? 0.005 : 1.0;
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, wait) * 1000) + 1);
+    if (ready <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ObjectOutcome outcome;
+  outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (timed_out) {
+    outcome.error = fmt::format("timed out after {:g} s (--object-timeout)", limit);
+  } else if (WIFSIGNALED(status)) {
+    outcome.error = fmt::format("the object's process died of signal {} ({})", WTERMSIG(status),
+                                strsignal(WTERMSIG(status)));
+  } else {
+    const json summary = json::parse(text, nullptr, false);
+    if (summary.is_discarded() || !summary.is_object()) {
+      outcome.error = fmt::format("the object's process ended ({}) without a report",
+                                  WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    } else if (summary.contains("error")) {
+      outcome.error = summary["error"].get<std::string>();
+    } else {
+      outcome.done = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(out);
+      outcome.grasps = summary.value("grasps", 0);
+      outcome.forceClosure = summary.value("force_closure", 0);
+      outcome.held = summary.value("held", 0);
+      if (!outcome.done) outcome.error = "the object's process wrote no dataset file";
+    }
+  }
+  return outcome;
+}
+
+}  // namespace graspkit::cli
