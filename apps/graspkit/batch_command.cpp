@@ -273,6 +273,30 @@ class BatchRun {
 
   void setWorkers(int workers) { workers_ = std::max(1, workers); }
 
+  // Once every shard has written its manifest, manifest.json gathers them (each shard's run
+  // writes it as it ends; the last to end writes the whole set). A later run without --shard
+  // then resumes from it.
+  void mergeShards(std::ostream& out) const {
+    if (shard_.count == 1) return;
+    json merged = {{"manifest_version", kManifestVersion}, {"engine_version", engineVersion()},
+                   {"settings", settingsJson(options_)},   {"shard", {{"index", 1}, {"count", 1}}},
+                   {"merged_from", json::array()},         {"objects", json::object()}};
+    for (int k = 1; k <= shard_.count; ++k) {
+      const fs::path file = options_.out / fmt::format("manifest-{}-of-{}.json", k, shard_.count);
+      if (!fs::exists(file)) return;  // a shard has not run yet
+      const json part = json::parse(readInputFile(file), nullptr, false);
+      if (part.is_discarded() || part.value("settings", json()) != merged["settings"]) return;
+      merged["merged_from"].push_back(file.filename().string());
+      for (const auto& [name, entry] : part["objects"].items()) merged["objects"][name] = entry;
+    }
+    int done = 0;
+    for (const auto& [name, entry] : merged["objects"].items())
+      done += entry.value("status", "") == "done" ? 1 : 0;
+    writeFileAtomically(options_.out / "manifest.json", merged.dump(2) + "\n");
+    out << fmt::format("merged {} shard manifests into {}: {} of {} objects done\n", shard_.count,
+                       (options_.out / "manifest.json").string(), done, files_.size());
+  }
+
   // The summary; the exit status (1 when some object failed).
   int summary(std::ostream& out) const {
     out << fmt::format(
@@ -280,6 +304,7 @@ class BatchRun {
         settled_ ? fmt::format(" ({} already settled before this run)", settled_) : "",
         manifest_file_.string());
     for (const std::string& failure : failures_) out << "  failed " << failure << "\n";
+    mergeShards(out);
     return failed_ > 0 ? 1 : 0;
   }
 

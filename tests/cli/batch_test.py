@@ -91,6 +91,12 @@ shard_entries = {**manifest(sharded, "manifest-1-of-2.json")["objects"],
                  **manifest(sharded, "manifest-2-of-2.json")["objects"]}
 if sorted(shard_entries) != sorted(entries):
     fail(f"the shards' manifests do not cover the objects once: {sorted(shard_entries)}")
+merged = manifest(sharded)
+if merged["objects"] != shard_entries or len(merged["merged_from"]) != 2:
+    fail(f"manifest.json does not gather the two shards: {merged}")
+run = batch(objects, sharded)  # unsharded, same settings: resumes from the merged manifest
+if "6 already settled" not in run.stdout or datasets(sharded) != files:
+    fail(f"a run without --shard did not resume from the merged manifest: {run.stdout}")
 
 # Killed mid-way, then resumed.
 killed = WORK / "killed"
