@@ -46,6 +46,7 @@ int openGraspkitModule(lua_State* L) {
   openPluginFunctions(L);
   openJsonFunctions(L);
   openPlannerFunctions(L);
+  openDatasetFunctions(L);
   lua_pushstring(L, scriptContext(L).script.string().c_str());
   lua_setfield(L, -2, "script_path");
   lua_pushstring(L, scriptContext(L).scriptFolder.string().c_str());

@@ -16,6 +16,7 @@ void openWorldFunctions(lua_State* L);    // world_binding.cpp
 void openPluginFunctions(lua_State* L);   // plugin_binding.cpp
 void openJsonFunctions(lua_State* L);     // json_binding.cpp
 void openPlannerFunctions(lua_State* L);  // planner_binding.cpp
+void openDatasetFunctions(lua_State* L);  // dataset_binding.cpp
 void registerBodyClass(lua_State* L);     // body_binding.cpp
 void registerRobotClass(lua_State* L);    // robot_binding.cpp
 void registerGraspClass(lua_State* L);    // grasp_binding.cpp

@@ -226,4 +226,36 @@ for name, entry in entries.items():
             fail(f"{name}: mass {f['object/mass'][()]} in the file, {mass} in the body XML")
         if f.attrs["units"] != "mm" or f["hand/name"][()].decode() != "parallel_jaw":
             fail(f"{name}: units {f.attrs['units']}, hand {f['hand/name'][()]}")
+# graspkit.load_dataset in Lua against h5py, on one file.
+name = "object_0001_cylinder"
+script = WORK / "read_dataset.lua"
+script.write_text(f"""
+local d = graspkit.load_dataset("{single / 'grasps' / (name + '.h5')}")
+local out = {{name = d.object.name, mass = d.object.mass, hand = d.hand.name, seed = d.seed,
+              epsilon = {{}}, closed = {{}}, x = {{}}, contacts = {{}}}}
+for i, g in ipairs(d.grasps) do
+  out.epsilon[i] = g.epsilon
+  out.closed[i] = g.closed_dofs
+  out.x[i] = g.pose.translation
+  out.contacts[i] = #g.contacts
+end
+print(graspkit.json_encode(out))
+""")
+run = subprocess.run([GRASPKIT, "-q", "run", str(script), "--allow-read", str(single)],
+                     capture_output=True, text=True)
+if run.returncode != 0:
+    fail(f"the Lua reader failed: {run.stdout}{run.stderr}")
+lua = json.loads(run.stdout)
+with h5py.File(single / "grasps" / f"{name}.h5", "r") as f:
+    offsets = f["grasps/contacts/offsets"][()]
+    expected = {
+        "name": f["object/name"][()].decode(), "mass": float(f["object/mass"][()]),
+        "hand": f["hand/name"][()].decode(), "seed": str(int(f.attrs["seed"])),
+        "epsilon": [float(e) for e in f["grasps/qualities/epsilon"][()]],
+        "closed": [[float(v) for v in row] for row in f["grasps/dofs/closed"][()]],
+        "x": [[float(v) for v in t[:3, 3]] for t in f["grasps/transforms"][()]],
+        "contacts": [int(offsets[i + 1] - offsets[i]) for i in range(len(offsets) - 1)],
+    }
+if lua != expected:
+    fail(f"Lua read {lua}, h5py {expected}")
 print("batch: every check passed")

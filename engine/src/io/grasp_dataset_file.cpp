@@ -19,6 +19,7 @@
 #include <mutex>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 
 namespace graspkit {
 namespace {
@@ -360,8 +361,7 @@ void saveGraspDataset(const GraspDataset& dataset, const fs::path& file) {
 GraspDataset loadGraspDataset(const fs::path& file) {
   const std::lock_guard lock(hdf5Mutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  if (!fs::is_regular_file(file))
-    throw Error(SourceLocation{file.string()}, "no such grasp dataset file");
+  checkInputFile(file);  // the read gate: a host's read policy (a Lua sandbox) applies here too
   Handle handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), &H5Fclose);
   if (!handle.valid()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
   return readFile(file, handle);
