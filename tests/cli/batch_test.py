@@ -32,7 +32,8 @@ from pathlib import Path
 GRASPKIT, SOURCE, WORK = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
 SANITIZE = len(sys.argv) > 4 and sys.argv[4] == "sanitize"
 HAND = SOURCE / "models/robots/parallel_jaw/parallel_jaw.xml"
-COUNT = 6
+COUNT = 20  # the issue's MPI check: 20 objects
+KINDS = ["box", "cylinder", "sphere", "superquadric", "convex_hull"]
 
 
 def fail(message):
@@ -69,9 +70,7 @@ subprocess.run([GRASPKIT, "-q", "objects", "--generate", str(COUNT), "--seed", "
 single = WORK / "single"
 batch(objects, single)
 files = datasets(single)
-if sorted(files) != sorted(f"object_{i:04d}_{k}.h5" for i, k in
-                           zip(range(COUNT), ["box", "cylinder", "sphere", "superquadric",
-                                              "convex_hull", "box"])):
+if sorted(files) != sorted(f"object_{i:04d}_{KINDS[i % 5]}.h5" for i in range(COUNT)):
     fail(f"the datasets are {sorted(files)}")
 entries = manifest(single)["objects"]
 if len(entries) != COUNT or any(e["status"] != "done" or e["attempts"] != 1
@@ -95,7 +94,7 @@ merged = manifest(sharded)
 if merged["objects"] != shard_entries or len(merged["merged_from"]) != 2:
     fail(f"manifest.json does not gather the two shards: {merged}")
 run = batch(objects, sharded)  # unsharded, same settings: resumes from the merged manifest
-if "6 already settled" not in run.stdout or datasets(sharded) != files:
+if f"{COUNT} already settled" not in run.stdout or datasets(sharded) != files:
     fail(f"a run without --shard did not resume from the merged manifest: {run.stdout}")
 
 # Killed mid-way, then resumed.
