@@ -15,15 +15,8 @@
 #include <iostream>
 
 #include "graspkit/error.hpp"
-#include "graspkit/grasp_validation.hpp"
-#include "graspkit/io/body_file.hpp"
 #include "graspkit/io/grasp_dataset_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/planning/planner.hpp"
-#include "graspkit/planning/search_space.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/version.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/planning/dataset_planning.hpp"
 
 namespace graspkit::cli {
 
@@ -50,87 +43,22 @@ ObjectOutcome outcomeFromJson(const json& j) {
 
 namespace {
 
-// One object's dataset: the hand over the object at the origin, a plan, its grasps closed and
-// measured, optionally validated. Runs in the child.
-GraspDataset planObject(const BatchOptions& options, const fs::path& object_file) {
-  const LoadOptions load = options.load.options();
-  auto world = std::make_shared<World>(loadAnyFile(options.hand, load));
-  if (world->robotCount() != 1 || !world->bodies().empty())
-    throw Error(SourceLocation{options.hand.string()}, "--hand: not a robot file");
-  Body object;
-  object.model = loadBodyFile(object_file);
-  object.kind = BodyKind::Graspable;
-  object.name = object.model->name.empty() ? object_file.stem().string() : object.model->name;
-  object.filename = object_file;
-  const int object_index = world->addBody(object);
-  Transform above = Transform::Identity();
-  above.translation() = Vector3(0, 0, 300);
-  world->setRobotPose(0, above);
-
-  PlanningRequest request;
-  request.world = world;
-  request.robot = 0;
-  request.object = BodyRef::body(object_index);
-  request.position = parsePositionSpace("axis-angle");
-  request.posture = parsePostureSpace("eigen");
-  request.energy = "contact";
-  request.seed = options.seed;
-  request.threads = 1;  // objects run side by side; one thread each keeps plans reproducible
-  request.bestListSize = options.grasps;
-  request.options = {{"mode", "restarts"}};
-  auto planner = Registry::global().makePlanner("simann", request);
-  PlanningBudget budget;
+DatasetRequest datasetRequest(const BatchOptions& options, const fs::path& object_file) {
+  DatasetRequest request;
+  request.hand = options.hand;
+  request.object = object_file;
+  request.load = options.load.options();
+  request.grasps = options.grasps;
   if (options.secondsPerObject)
-    budget.seconds = *options.secondsPerObject;
+    request.seconds = *options.secondsPerObject;
   else
-    budget.steps = options.steps;
-  PlanningRun run = runPlanner(*planner, budget);
-  finishGrasps(request, run.grasps, 1);
-
-  std::vector<int> held(run.grasps.size(), -1);
-  if (options.validate) {
-    ValidationRequest validation;
-    validation.seconds = options.validateSeconds;
-    std::vector<World> worlds;
-    for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(request, g));
-    const auto labels = validateGrasps(worlds, 0, object_index, validation, 1);
-    for (std::size_t i = 0; i < labels.size(); ++i) held[i] = labels[i].held ? 1 : 0;
-  }
-
-  GraspDataset dataset;
-  dataset.objectFile = object_file.string();
-  dataset.objectName = object.name;
-  dataset.objectMass = object.model->mass;
-  dataset.handFile = options.hand.string();
-  dataset.handName = world->robot(0).name();
-  dataset.engineVersion = engineVersion();
-  dataset.seed = options.seed;
-  const Transform to_object = world->bodies()[object_index].pose.inverse();
-  const BodyRef object_ref = BodyRef::body(object_index);
-  for (std::size_t i = 0; i < run.grasps.size(); ++i) {
-    const PlannedGrasp& g = run.grasps[i];
-    DatasetGrasp d;
-    d.pregrasp = to_object * g.pose;
-    d.grasp = to_object * g.closed.pose;
-    d.openDofs = g.dofs;
-    d.closedDofs = g.closed.dofs;
-    d.epsilon = g.epsilon;
-    d.volume = g.volume;
-    d.forceClosure = g.forceClosure;
-    d.held = held[i];
-    for (const Contact& c : g.contactList) {
-      // The normal points into body1: out of the object when the object is body2.
-      const bool object_second = c.body2 == object_ref;
-      d.contactPoints.push_back(to_object * (object_second ? c.position2 : c.position1));
-      d.contactNormals.push_back(to_object.linear() * (object_second ? c.normal : -c.normal));
-    }
-    dataset.grasps.push_back(std::move(d));
-  }
-  return dataset;
+    request.steps = options.steps;
+  request.validate = options.validate;
+  request.validateSeconds = options.validateSeconds;
+  request.seed = options.seed;
+  return request;
 }
 
-// Runs one object in a child process: its dataset file is written by the child, its summary
-// comes back through a pipe as one JSON line. A crash, a kill or a timeout is a failure.
 }  // namespace
 
 ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
@@ -147,7 +75,7 @@ ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file
     json summary;
     int status = 0;
     try {
-      const GraspDataset dataset = planObject(options, object_file);
+      const GraspDataset dataset = planGraspDataset(datasetRequest(options, object_file));
       saveGraspDataset(dataset, out);
       int fc = 0, held = 0;
       for (const DatasetGrasp& g : dataset.grasps) {

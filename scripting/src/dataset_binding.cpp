@@ -38,6 +38,15 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
     lua_pushboolean(L, g.held == 1);
     lua_setfield(L, -2, "held");
   }
+  lua_createtable(L, static_cast<int>(g.breakaway.size()), 0);
+  for (std::size_t j = 0; j < g.breakaway.size(); ++j) {
+    lua_createtable(L, 0, 2);
+    lua_pushboolean(L, g.breakaway[j].engaged);
+    lua_setfield(L, -2, "engaged");
+    setNumber(L, "value", g.breakaway[j].value);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
+  }
+  lua_setfield(L, -2, "breakaway");
   lua_createtable(L, static_cast<int>(g.contactPoints.size()), 0);
   for (std::size_t k = 0; k < g.contactPoints.size(); ++k) {
     lua_createtable(L, 0, 2);
@@ -52,7 +61,8 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
 
 // graspkit.load_dataset(file) -> {object = {file, name, mass}, hand = {file, name},
 //   engine_version, seed, grasps = {{pose, pregrasp, open_dofs, closed_dofs, epsilon, volume,
-//   force_closure, held, contacts = {{point, normal}, ...}}, ...}}
+//   force_closure, held, breakaway = {{engaged, value}, ...}, contacts = {{point, normal}, ...}},
+//   ...}}
 int loadDataset(lua_State* L) {
   const std::filesystem::path file = scriptContext(L).inputPath(toFileName(L, 1));
   const GraspDataset dataset = loadGraspDataset(file);

@@ -37,6 +37,7 @@ GraspDataset twoGrasps() {
   a.grasp = pose(0.31, {1, 2, 3}, {11, -19, 120.25});
   a.openDofs = {0, 0, 0, 0.1};
   a.closedDofs = {0.5, 1.2, 1.3, 0.1};
+  a.breakaway = {{false, 0.0}, {true, 0.75}, {false, 0.0}};
   a.epsilon = 0.16891;
   a.volume = 0.10569;
   a.forceClosure = true;
@@ -76,6 +77,12 @@ TEST(GraspDatasetFile, LoadsBackWhatWasSaved) {
     EXPECT_EQ(l.pregrasp.matrix(), s.pregrasp.matrix());
     EXPECT_EQ(l.openDofs, s.openDofs);
     EXPECT_EQ(l.closedDofs, s.closedDofs);
+    ASSERT_EQ(l.breakaway.size(), 3u);  // b saved none: three joints, none broken away
+    for (std::size_t j = 0; j < 3; ++j) {
+      const BreakawayState expected = s.breakaway.empty() ? BreakawayState{} : s.breakaway[j];
+      EXPECT_EQ(l.breakaway[j].engaged, expected.engaged);
+      EXPECT_EQ(l.breakaway[j].value, expected.value);
+    }
     EXPECT_EQ(l.epsilon, s.epsilon);
     EXPECT_EQ(l.volume, s.volume);
     EXPECT_EQ(l.forceClosure, s.forceClosure);

@@ -1,6 +1,7 @@
 // Grasp datasets in HDF5 through its C API. Layout (docs/dataset.md):
 //   /grasps/transforms, /grasps/pregrasp_transforms   N x 4 x 4, mm
 //   /grasps/dofs/open, /grasps/dofs/closed             N x D
+//   /grasps/breakaway/engaged (uint8), .../values      N x J: each joint's breakaway state
 //   /grasps/qualities/epsilon, .../volume              N
 //   /grasps/qualities/force_closure                    N, uint8
 //   /grasps/qualities/held                             N, int8 (-1: not validated)
@@ -16,6 +17,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <mutex>
 
 #include "graspkit/error.hpp"
@@ -166,6 +168,23 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
   w.array(dof_group, "open", H5T_NATIVE_DOUBLE, {n, dofs}, open.data());
   w.array(dof_group, "closed", H5T_NATIVE_DOUBLE, {n, dofs}, closed.data());
 
+  hsize_t joints = 0;
+  for (const DatasetGrasp& g : grasps) joints = std::max<hsize_t>(joints, g.breakaway.size());
+  std::vector<std::uint8_t> engaged;
+  std::vector<double> broke_at;
+  for (const DatasetGrasp& g : grasps) {
+    if (!g.breakaway.empty() && g.breakaway.size() != joints)
+      throw Error(SourceLocation{file.string()}, "the grasps disagree on the hand's joint count");
+    for (hsize_t j = 0; j < joints; ++j) {
+      const BreakawayState state = g.breakaway.empty() ? BreakawayState{} : g.breakaway[j];
+      engaged.push_back(state.engaged ? 1 : 0);
+      broke_at.push_back(state.value);
+    }
+  }
+  const hid_t breakaway = w.group(root, "breakaway");
+  w.array(breakaway, "engaged", H5T_NATIVE_UINT8, {n, joints}, engaged.data());
+  w.array(breakaway, "values", H5T_NATIVE_DOUBLE, {n, joints}, broke_at.data());
+
   const hid_t qualities = w.group(root, "qualities");
   std::vector<double> epsilon, volume;
   std::vector<std::uint8_t> force_closure;
@@ -302,6 +321,9 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
   const auto open = r.array<double>("/grasps/dofs/open", H5T_NATIVE_DOUBLE, {n, 0});
   const hsize_t dofs = r.lastDims()[1];
   const auto closed = r.array<double>("/grasps/dofs/closed", H5T_NATIVE_DOUBLE, {n, dofs});
+  const auto engaged = r.array<std::uint8_t>("/grasps/breakaway/engaged", H5T_NATIVE_UINT8, {n, 0});
+  const hsize_t joints = r.lastDims()[1];
+  const auto broke_at = r.array<double>("/grasps/breakaway/values", H5T_NATIVE_DOUBLE, {n, joints});
   const auto epsilon = r.array<double>("/grasps/qualities/epsilon", H5T_NATIVE_DOUBLE, {n});
   const auto volume = r.array<double>("/grasps/qualities/volume", H5T_NATIVE_DOUBLE, {n});
   const auto force_closure =
@@ -322,6 +344,8 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
                       open.begin() + static_cast<long>((i + 1) * dofs));
     g.closedDofs.assign(closed.begin() + static_cast<long>(i * dofs),
                         closed.begin() + static_cast<long>((i + 1) * dofs));
+    for (hsize_t j = 0; j < joints; ++j)
+      g.breakaway.push_back({engaged[i * joints + j] != 0, broke_at[i * joints + j]});
     g.epsilon = epsilon[i];
     g.volume = volume[i];
     g.forceClosure = force_closure[i] != 0;

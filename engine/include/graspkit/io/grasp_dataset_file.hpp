@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "graspkit/robot.hpp"
 #include "graspkit/transform.hpp"
 
 namespace graspkit {
@@ -17,6 +18,9 @@ struct DatasetGrasp {
   Transform grasp = Transform::Identity();     // hand pose, closed, in the object frame
   std::vector<double> openDofs;
   std::vector<double> closedDofs;
+  // The closed hand's breakaway state, one per joint (robot-wide order): with the DOFs, what
+  // places every link (a Barrett finger that broke away). Empty: no joint broke away.
+  std::vector<BreakawayState> breakaway;
   double epsilon = -1.0;
   double volume = 0.0;
   bool forceClosure = false;
