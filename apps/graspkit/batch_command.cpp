@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -166,14 +167,27 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
 
 namespace {
 
+// Whether a process still runs: a zombie (killed, not yet reaped by a container's init that may
+// never reap it) does not.
+bool processRuns(pid_t pid) {
+  if (pid <= 0) return false;
+  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
+  if (!stat) return ::kill(pid, 0) == 0 || errno != ESRCH;
+  std::string line;
+  std::getline(stat, line);
+  const auto close = line.rfind(')');  // the state follows the command name in parentheses
+  return close == std::string::npos || close + 2 >= line.size() || line[close + 2] != 'Z';
+}
+
 // Temporaries a killed run left behind (".NAME.h5.PID.tmp" whose process is gone).
 void removeStaleTemporaries(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
+  std::error_code missing;
+  for (const auto& entry : fs::directory_iterator(folder, missing)) {
     const std::string name = entry.path().filename().string();
     if (name.empty() || name[0] != '.' || entry.path().extension() != ".tmp") continue;
     const std::string stem = entry.path().stem().string();  // .NAME.h5.PID
     const pid_t pid = static_cast<pid_t>(std::atol(stem.substr(stem.rfind('.') + 1).c_str()));
-    if (pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH) {
+    if (!processRuns(pid)) {
       std::error_code ignored;
       fs::remove(entry.path(), ignored);
     }
@@ -299,6 +313,7 @@ class BatchRun {
 
   // The summary; the exit status (1 when some object failed).
   int summary(std::ostream& out) const {
+    removeStaleTemporaries(options_.out / "grasps");  // a writer that died during this run
     out << fmt::format(
         "{} objects: {} done, {} failed{}; manifest {}\n", share_, done_, failed_,
         settled_ ? fmt::format(" ({} already settled before this run)", settled_) : "",

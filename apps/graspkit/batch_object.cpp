@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -68,9 +69,14 @@ ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file
   if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
   std::cout.flush();
   std::cerr.flush();
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0) throw Error("batch: cannot start a process for an object");
   if (child == 0) {
+    // Dies with its parent: a killed rank must not leave a child that goes on writing into the
+    // output folder while the run is started again.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(1);
     ::close(channel[0]);
     json summary;
     int status = 0;

@@ -55,6 +55,12 @@ def datasets(out):
     return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
 
 
+def differences(out):
+    """Names of the files in out/grasps that are missing, extra or not the single run's bytes."""
+    got = datasets(out)
+    return sorted(n for n in set(got) | set(files) if got.get(n) != files.get(n))
+
+
 def manifest(out, name="manifest.json"):
     return json.loads((Path(out) / name).read_text())
 
@@ -196,7 +202,8 @@ else:
                          env=env, timeout=300)
     if run.returncode != 0 or datasets(killed_mpi) != files:
         fail(f"after a rank was killed, running again did not complete the set ({run.returncode}):"
-             f" {run.stdout}{run.stderr}")
+             f" {run.stdout}{run.stderr}; files that differ (a stray temporary among them means a "
+             f"killed rank's writer was not cleaned up): {differences(killed_mpi)}")
     if any(e["status"] != "done" for e in manifest(killed_mpi)["objects"].values()):
         fail(f"objects are missing after the resumed MPI run: {manifest(killed_mpi)['objects']}")
 
