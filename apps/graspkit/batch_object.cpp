@@ -60,6 +60,20 @@ DatasetRequest datasetRequest(const BatchOptions& options, const fs::path& objec
   return request;
 }
 
+// Once an object's dataset is in place, any temporary of it is a killed writer's leftover: one
+// object has one writer at a time, and a writer dies with the process that started it.
+void removeEarlierTemporaries(const fs::path& dataset) {
+  const std::string prefix = "." + dataset.filename().string() + ".";
+  std::error_code missing;
+  for (const auto& entry : fs::directory_iterator(dataset.parent_path(), missing)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(prefix) && entry.path().extension() == ".tmp") {
+      std::error_code ignored;
+      fs::remove(entry.path(), ignored);
+    }
+  }
+}
+
 }  // namespace
 
 ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
@@ -145,6 +159,7 @@ ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file
       if (!outcome.done) outcome.error = "the object's process wrote no dataset file";
     }
   }
+  if (outcome.done) removeEarlierTemporaries(out);
   return outcome;
 }
 
