@@ -34,6 +34,36 @@ Eigen::AlignedBox3d transformedBox(const Eigen::AlignedBox3d& box, const Transfo
   return out;
 }
 
+// The smallest ball holding a triangle: the longest edge's when the triangle is right- or
+// obtuse-angled, else the circumscribed one. A link's triangles are often far larger than the
+// object's, and the Embree search around one visits every object triangle in its ball, so a ball
+// tighter than the bounding box's saves much of that search.
+struct Ball {
+  Vector3 center;
+  double radius;
+};
+
+Ball enclosingBall(const Triangle& t) {
+  const Vector3 ab = t.b - t.a, bc = t.c - t.b, ca = t.a - t.c;
+  const double ab2 = ab.squaredNorm(), bc2 = bc.squaredNorm(), ca2 = ca.squaredNorm();
+  Vector3 center;
+  if (ab2 >= bc2 + ca2) {
+    center = 0.5 * (t.a + t.b);
+  } else if (bc2 >= ab2 + ca2) {
+    center = 0.5 * (t.b + t.c);
+  } else if (ca2 >= ab2 + bc2) {
+    center = 0.5 * (t.c + t.a);
+  } else {  // acute, so |ab x ac| > 0
+    const Vector3 ac = -ca;
+    const Vector3 n = ab.cross(ac);
+    center = t.a + (ab2 * ac - ca2 * ab).cross(n) / (2.0 * n.squaredNorm());
+  }
+  // Measured rather than taken from the formula, so that rounding cannot leave a vertex out.
+  const double radius = std::sqrt(std::max(
+      {(t.a - center).squaredNorm(), (t.b - center).squaredNorm(), (t.c - center).squaredNorm()}));
+  return {center, radius};
+}
+
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame.
 // With `first_only`, stops once a query triangle has given a contact.
@@ -58,14 +88,30 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
     Eigen::AlignedBox3d box(tq.a);
     box.extend(tq.b).extend(tq.c);
     if (!box.intersects(reach)) continue;
-    const Vector3 center = box.center();
-    const double radius = 0.5 * box.diagonal().norm() + threshold;
+    const Ball ball = enclosingBall(tq);
+    // The query triangle's plane, unit normal: a target triangle whose box lies wholly beyond
+    // the threshold on one side of it can neither touch nor cross the query triangle.
+    Vector3 normal = (tq.b - tq.a).cross(tq.c - tq.a);
+    const double normal_norm = normal.norm();
+    const bool has_plane = normal_norm > 0.0;
+    if (has_plane) normal /= normal_norm;
+    const double plane_offset = normal.dot(tq.a);
+    const Vector3 abs_normal = normal.cwiseAbs();
     box.min().array() -= threshold;
     box.max().array() += threshold;
     // Embree finds the triangles near the query's bounding sphere; their boxes sift them.
     candidates.clear();
-    target.forEachTriangleNear(center, radius, [&](unsigned t) {
-      if (box.intersects(target.triangleBox(t))) candidates.push_back(t);
+    target.forEachTriangleNear(ball.center, ball.radius + threshold, [&](unsigned t) {
+      const Eigen::AlignedBox3d& near_box = target.triangleBox(t);
+      if (!box.intersects(near_box)) return;
+      if (has_plane) {
+        const double from_plane = normal.dot(near_box.center()) - plane_offset;
+        const double half_depth = 0.5 * abs_normal.dot(near_box.sizes());
+        // The margin covers the rounding of these sums (mm-sized, far above 1e-9 of them).
+        if (std::abs(from_plane) > half_depth + threshold + 1e-9 * (1.0 + std::abs(plane_offset)))
+          return;
+      }
+      candidates.push_back(t);
     });
     // Embree's traversal order is not part of its contract; contacts must not depend on it, so
     // the few candidates that give contacts are put in triangle order (sorting them all would
