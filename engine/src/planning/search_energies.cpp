@@ -46,7 +46,15 @@ struct ContactSample {
 // distance, and a bounded query is several times cheaper than an open one.
 class NearestPoints {
  public:
-  std::optional<Vector3> find(const PlanningScene& scene, const PlacedVirtualContact& contact) {
+  // The nearest object point to a virtual contact. With `within`, a contact whose nearest point
+  // lies farther is answered `beyond` at the cost of a query bounded by `within`.
+  struct Answer {
+    std::optional<Vector3> point;  // none when beyond, or for an object without triangles
+    bool beyond = false;
+  };
+
+  Answer find(const PlanningScene& scene, const PlacedVirtualContact& contact,
+              double within = std::numeric_limits<double>::infinity()) {
     const Transform objectPose = bodyPose(scene.world(), scene.object());
     if (!objectPose.isApprox(object_pose_, 0.0)) {
       object_pose_ = objectPose;
@@ -56,13 +64,16 @@ class NearestPoints {
     if (last_.size() <= i) last_.resize(i + 1);
     std::optional<SurfacePoint> nearest;
     if (last_[i]) {
-      const double bound = (*last_[i] - contact.point).norm();
-      nearest = scene.nearestObjectPoint(contact.point, bound * (1.0 + 1e-9) + 1e-9);
+      // The object has triangles (one was nearest before), so nothing within `within` means
+      // the contact is beyond it.
+      const double bound = (*last_[i] - contact.point).norm() * (1.0 + 1e-9) + 1e-9;
+      nearest = scene.nearestObjectPoint(contact.point, std::min(bound, within));
+      if (!nearest && bound > within) return {std::nullopt, true};
     }
     if (!nearest) nearest = scene.nearestObjectPoint(contact.point);
-    if (!nearest) return std::nullopt;
+    if (!nearest) return {};
     last_[i] = nearest->point;
-    return nearest->point;
+    return {nearest->point, nearest->distance > within};
   }
 
  private:
@@ -70,12 +81,15 @@ class NearestPoints {
   std::vector<std::optional<Vector3>> last_;
 };
 
-ContactSample sample(const PlanningScene& scene, const PlacedVirtualContact& contact,
-                     NearestPoints& cache) {
+// The contact's sample; nullopt when its nearest object point lies beyond `within`.
+std::optional<ContactSample> sample(const PlanningScene& scene, const PlacedVirtualContact& contact,
+                                    NearestPoints& cache,
+                                    double within = std::numeric_limits<double>::infinity()) {
   ContactSample s;
-  const auto nearest = cache.find(scene, contact);
-  if (!nearest) return s;  // an object without triangles: nothing to approach
-  s.toObject = *nearest - contact.point;
+  const NearestPoints::Answer nearest = cache.find(scene, contact, within);
+  if (nearest.beyond) return std::nullopt;
+  if (!nearest.point) return s;  // an object without triangles: nothing to approach
+  s.toObject = *nearest.point - contact.point;
   s.distance = s.toObject.norm();
   s.cosine = s.distance > 0 ? contact.normal.dot(s.toObject) / s.distance : 1.0;
   return s;
@@ -91,7 +105,7 @@ double contactEnergy(const PlanningScene& scene, NearestPoints& cache,
   const double stop = (bound + 1e-9) * count;
   double total = 0.0;
   for (const PlacedVirtualContact& contact : contacts) {
-    const ContactSample s = sample(scene, contact, cache);
+    const ContactSample s = *sample(scene, contact, cache);
     total += s.distance + kNormalWeight * (1.0 - s.cosine);
     if (total > stop) break;
   }
@@ -108,8 +122,10 @@ double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) 
   const auto& models = scene.virtualContactModels();
   std::vector<std::vector<Vector6>> wrenches;
   for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
-    const ContactSample s = sample(scene, contact, cache);
-    const double scale = potentialScale(s.distance, s.cosine);
+    // A contact beyond the potential's range scales to 0: no need for its exact nearest point.
+    const std::optional<ContactSample> s = sample(scene, contact, cache, kPotentialRange);
+    if (!s) continue;
+    const double scale = potentialScale(s->distance, s->cosine);
     if (scale <= kPotentialCountThreshold) continue;
     const VirtualContact& source = models[static_cast<std::size_t>(contact.index)];
     const Matrix3 frame = contact.frame.linear();
