@@ -11,15 +11,16 @@
 #include <string>
 #include <vector>
 
-#include <random>
-
 #include <gtest/gtest.h>
 
 #include "graspkit/body.hpp"
+#include "graspkit/collision.hpp"
 #include "graspkit/contact.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/world_file.hpp"
 #include "graspkit/material.hpp"
 #include "graspkit/world.hpp"
+#include "test_paths.hpp"
 
 namespace graspkit {
 namespace {
@@ -183,6 +184,77 @@ TEST(InContact, AnswersWhetherFindContactsFindsAny) {
   }
   EXPECT_GT(with, 100);
   EXPECT_GT(without, 100);
+}
+
+// surfacesWithin asks withinDistance's question through the contact search: the cubes' gap
+// against the distance by hand (crossing and touching count as within), then, as a second
+// method, FCL's own answer on tilted cubes and on GraspIt!'s Barrett around its mug, each
+// asked just below and just above FCL's distance for the pair.
+TEST(SurfacesWithin, TheGapByHand) {
+  EXPECT_TRUE(surfacesWithin(twoCubes(0.05).world, BodyRef::body(1), BodyRef::body(0), 0.1));
+  EXPECT_FALSE(surfacesWithin(twoCubes(0.15).world, BodyRef::body(1), BodyRef::body(0), 0.1));
+  EXPECT_TRUE(surfacesWithin(twoCubes(0.15).world, BodyRef::body(1), BodyRef::body(0), 0.2));
+  EXPECT_TRUE(surfacesWithin(twoCubes(0.0).world, BodyRef::body(1), BodyRef::body(0), 0.1));
+  EXPECT_TRUE(surfacesWithin(twoCubes(-3.0).world, BodyRef::body(0), BodyRef::body(1), 0.1));
+  // Side by side, 2 mm apart across x: the distance is the gap between the x faces.
+  EXPECT_FALSE(
+      surfacesWithin(twoCubes(-20.0, 22.0).world, BodyRef::body(0), BodyRef::body(1), 1.9));
+  EXPECT_TRUE(surfacesWithin(twoCubes(-20.0, 22.0).world, BodyRef::body(0), BodyRef::body(1), 2.1));
+}
+
+// Asks surfacesWithin just inside and just outside FCL's distance between a and b; returns
+// whether the pair was near enough to count.
+bool agreesWithFclAbout(const World& world, const BodyRef& a, const BodyRef& b,
+                        const std::string& what) {
+  const double d = distance(world, a, b).distance;
+  if (d > 5.0) return false;
+  EXPECT_EQ(surfacesWithin(world, a, b, 0.1), withinDistance(world, a, b, 0.1)) << what;
+  if (d < 1e-3) {
+    EXPECT_TRUE(surfacesWithin(world, a, b, 0.01)) << what << ": distance " << d;
+  } else {
+    EXPECT_FALSE(surfacesWithin(world, a, b, d * (1 - 1e-6))) << what << ": distance " << d;
+    EXPECT_TRUE(surfacesWithin(world, a, b, d * (1 + 1e-6))) << what << ": distance " << d;
+  }
+  return true;
+}
+
+TEST(SurfacesWithin, AgreesWithFclOnTiltedCubes) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> gap(-0.5, 3.0), shift(-25, 25), tilt(-0.3, 0.3);
+  int near = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    TwoCubes s = twoCubes(gap(random), shift(random), shift(random));
+    Transform pose = s.world.bodies()[1].pose;
+    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitX()));
+    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitY()));
+    s.world.bodies()[1].setPose(pose);
+    near += agreesWithFclAbout(s.world, s.upper, s.lower, "trial " + std::to_string(trial));
+  }
+  EXPECT_GT(near, 200);
+}
+
+TEST(SurfacesWithin, AgreesWithFclAroundGraspItsMug) {
+  GRASPKIT_REQUIRE_SHARED();
+  World world = loadWorldFile(*test::graspitDataDir() / "worlds" / "plannerMug.xml");
+  const Transform mug_pose = bodyPose(world, BodyRef::body(0));
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int near = 0;
+  for (int trial = 0; trial < 150; ++trial) {  // random hand poses and postures by the mug
+    const Vector3 axis(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
+    Transform pose = Transform::Identity();
+    pose.linear() = Eigen::AngleAxisd(6.3 * unit(random), axis.normalized()).toRotationMatrix();
+    pose.translation() = mug_pose.translation() +
+                         160 * Vector3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
+    world.setRobotPose(0, pose);
+    std::vector<double> dofs(4);
+    for (double& d : dofs) d = 2.4 * unit(random);
+    world.setDofValues(0, dofs);
+    for (const BodyRef& link : worldBodies(world))
+      if (link.isLink())
+        near += agreesWithFclAbout(world, link, BodyRef::body(0), "trial " + std::to_string(trial));
+  }
+  EXPECT_GT(near, 100);
 }
 
 TEST(FindContacts, OverlappingCubesInterpenetrate) {

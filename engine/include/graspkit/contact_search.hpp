@@ -44,4 +44,11 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
 bool inContact(const World& world, const BodyRef& body1, const BodyRef& body2,
                const ContactRequest& request = {});
 
+// Whether the two bodies' surfaces come closer than `distance` mm, crossing surfaces included:
+// withinDistance's question (graspkit/collision.hpp) answered by the contact search, which
+// visits only the triangles near the other body, where FCL's distance traversal has to descend
+// many bounding-volume pairs of two near-touching meshes.
+bool surfacesWithin(const World& world, const BodyRef& body1, const BodyRef& body2,
+                    double distance);
+
 }  // namespace graspkit

@@ -64,12 +64,16 @@ Ball enclosingBall(const Triangle& t) {
   return {center, radius};
 }
 
+// Where a search may stop: after every triangle, once a query triangle has given a contact, or
+// at the first contact or crossing pair (the question "closer than the threshold?").
+enum class SearchEnd { AllPairs, FirstContact, FirstContactOrCrossing };
+
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
-// `target`, as point pairs (on query, on target) in the target's frame.
-// With `first_only`, stops once a query triangle has given a contact.
+// `target`, as point pairs (on query, on target) in the target's frame. Returns whether some
+// triangle pairs cross.
 bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
-                 std::vector<RawContact>& out, bool first_only = false) {
+                 std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs) {
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
   reach.min().array() -= threshold;
@@ -122,6 +126,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
       pairs.clear();
       if (!collision::triangleContacts(tq, tt, threshold_sq, pairs, touching_is_contact)) {
         intersecting = true;
+        if (end == SearchEnd::FirstContactOrCrossing) return true;
         continue;
       }
       if (pairs.empty()) continue;
@@ -132,7 +137,7 @@ bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
     std::stable_sort(found.begin(), found.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [t, contact] : found) out.push_back(contact);
-    if (first_only && !out.empty()) break;
+    if (end != SearchEnd::AllPairs && !out.empty()) break;
   }
   return intersecting;
 }
@@ -299,8 +304,18 @@ bool inContact(const World& world, const BodyRef& body1, const BodyRef& body2,
   if (!search.reachable) return false;
   std::vector<RawContact> raw;
   searchPairs(*search.query, search.query_to_target, *search.target, request.threshold,
-              request.touchingIsContact, raw, true);
+              request.touchingIsContact, raw, SearchEnd::FirstContact);
   return !raw.empty();
+}
+
+bool surfacesWithin(const World& world, const BodyRef& body1, const BodyRef& body2,
+                    double distance) {
+  const PairSearch search(world, body1, body2, distance);
+  if (!search.reachable) return false;
+  std::vector<RawContact> raw;
+  const bool crossing = searchPairs(*search.query, search.query_to_target, *search.target, distance,
+                                    false, raw, SearchEnd::FirstContactOrCrossing);
+  return crossing || !raw.empty();
 }
 
 ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,

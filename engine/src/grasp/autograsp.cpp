@@ -229,11 +229,12 @@ std::vector<double> interpolate(const std::vector<double>& a, const std::vector<
 }
 
 // Whether some pair is closer than the contact instant: the bisections' question, answered pair
-// by pair so that the first close pair ends it (the same answer as the smallest distance).
+// by pair so that the first close pair ends it (the same answer as the smallest distance). The
+// contact search answers it in a fraction of FCL's time for meshes a hair apart.
 bool withinContactInstant(const World& world,
                           const std::vector<std::pair<BodyRef, BodyRef>>& pairs) {
   return std::any_of(pairs.begin(), pairs.end(), [&](const auto& pair) {
-    return withinDistance(world, pair.first, pair.second, kContactInstant);
+    return surfacesWithin(world, pair.first, pair.second, kContactInstant);
   });
 }
 
