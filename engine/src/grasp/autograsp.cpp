@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "graspkit/collision.hpp"
 #include "graspkit/contact_search.hpp"
@@ -46,14 +47,19 @@ std::vector<std::pair<BodyRef, BodyRef>> handPairs(const World& world, const Han
   return pairs;
 }
 
-// The hand's pairs whose surfaces intersect, among those whose link `include` accepts.
-template <class Include>
-std::vector<std::pair<BodyRef, BodyRef>> collidingHandPairs(const World& world,
-                                                            const HandBodies& hand,
-                                                            Include&& include) {
+// The pairs (link, partner) whose surfaces intersect, for each of `links` (hand links): one
+// collision report, which places each body once.
+std::vector<std::pair<BodyRef, BodyRef>> collidingPairsOf(const World& world,
+                                                          std::span<const BodyRef> links) {
   std::vector<std::pair<BodyRef, BodyRef>> colliding;
-  for (const auto& [link, other] : handPairs(world, hand, 0.0))
-    if (include(link) && collide(world, link, other)) colliding.emplace_back(link, other);
+  if (links.empty()) return colliding;
+  auto listed = [&](const BodyRef& ref) {
+    return std::find(links.begin(), links.end(), ref) != links.end();
+  };
+  for (const CollidingPair& pair : collisionReport(world, {links, false})) {
+    if (listed(pair.first)) colliding.emplace_back(pair.first, pair.second);
+    if (listed(pair.second)) colliding.emplace_back(pair.second, pair.first);
+  }
   return colliding;
 }
 
@@ -129,10 +135,10 @@ class Closing {
 
   // Active pairs (link, partner) whose surfaces intersect, among links that moved.
   std::vector<std::pair<BodyRef, BodyRef>> collisions(const std::vector<bool>& moved) const {
-    return collidingHandPairs(world_, hand_, [&](const BodyRef& link) {
-      const auto at = std::lower_bound(hand_.links.begin(), hand_.links.end(), link);
-      return moved[static_cast<std::size_t>(at - hand_.links.begin())];
-    });
+    std::vector<BodyRef> links;
+    for (std::size_t i = 0; i < moved.size(); ++i)
+      if (moved[i]) links.push_back(hand_.links[i]);
+    return collidingPairsOf(world_, links);
   }
 
   std::vector<bool> movedLinks(const std::vector<Transform>& before) const {
@@ -337,11 +343,7 @@ AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& mot
 bool openUntilFree(World& world, int robot) {
   requireHand(world, robot);
   const HandBodies hand = handBodies(world, robot);
-  auto free = [&] {
-    for (const auto& [link, other] : handPairs(world, hand, 0.0))
-      if (collide(world, link, other)) return false;
-    return true;
-  };
+  auto free = [&] { return !anyCollision(world, hand.links); };
   const RobotModel& model = world.robot(robot).model();
   // GraspIt!'s quickOpen: chunks of ten autograsp steps against the closing direction.
   for (int chunk = 0; chunk < 1000; ++chunk) {
@@ -367,9 +369,7 @@ bool openUntilFree(World& world, int robot) {
 AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions& options) {
   world.robot(robot);  // range check
   const HandBodies hand = handBodies(world, robot);
-  auto colliding = [&] {
-    return collidingHandPairs(world, hand, [](const BodyRef&) { return true; });
-  };
+  auto colliding = [&] { return collidingPairsOf(world, hand.links); };
   if (!colliding().empty()) {
     throw Error(fmt::format("robot '{}' collides before it approaches", world.robot(robot).name()));
   }
