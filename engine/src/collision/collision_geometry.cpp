@@ -135,11 +135,13 @@ double displacement(const CollisionGeometry& geometry, const Transform& from, co
   return (to * c - from * c).norm() + turn * geometry.boxHalfSize.norm();
 }
 
-// A proof that two hulls were at least `gap` apart, placed as they were then. It still holds
-// for any placement whose two displacements from those poses add up to less than the gap.
+// A proof that two hulls were at least `gap` apart, placed as they were then, across `axis`
+// (in a's body frame). It still holds for any placement whose two displacements from those
+// poses add up to less than the gap; once they do not, its axis is the first to try again.
 struct SeparationCertificate {
   Transform pose_a = Transform::Identity();
   Transform pose_b = Transform::Identity();
+  Vector3 axis = Vector3::Zero();
   double gap = -1.0;  // negative: empty
 };
 
@@ -148,13 +150,11 @@ struct SeparationCertificate {
 constexpr double kCertificateMargin = 1e-6;
 
 // What one thread remembers of a pair of meshes between queries (planners and autograsp ask
-// about the same pairs in nearby poses again and again): the last separating axis, in a's body
-// frame, a few separation certificates (a mesh shown by several links, as a hand's fingers,
-// meets the other mesh at several poses), and how many queries to leave to FCL alone after
-// certificates failed. Memory only chooses what to try or proves by geometry; stale memory costs
-// time, never truth.
+// about the same pairs in nearby poses again and again): a few separation certificates (a mesh
+// shown by several links, as a hand's fingers, meets the other mesh at several poses), and how
+// many queries to leave to FCL alone after certificates failed. Memory only chooses what to try or
+// proves by geometry; stale memory costs time, never truth.
 struct PairMemory {
-  Vector3 axis = Vector3::Zero();
   int failures = 0;
   int skip = 0;
   std::array<SeparationCertificate, 4> certificates;
@@ -169,18 +169,17 @@ bool certified(const PairMemory& memory, const CollisionGeometry& a, const Trans
   return false;
 }
 
-// Keeps a certificate in the slot of the placement nearest this one (or an empty slot), so each
-// finger showing a shared mesh keeps its own.
-void remember(PairMemory& memory, const Transform& pose_a, const Transform& pose_b, double gap) {
+// The certificate of the placement nearest this one; with `empty_first`, an empty slot before
+// any. Each finger showing a shared mesh so keeps its own certificate and tries its own axis.
+SeparationCertificate& nearestCertificate(PairMemory& memory, const Transform& pose_a,
+                                          const Transform& pose_b, bool empty_first) {
   auto farness = [&](const SeparationCertificate& c) {
-    if (c.gap < 0) return -1.0;
+    if (c.gap < 0) return empty_first ? -1.0 : std::numeric_limits<double>::infinity();
     return (c.pose_a.translation() - pose_a.translation()).norm() +
            (c.pose_b.translation() - pose_b.translation()).norm();
   };
-  auto slot =
-      std::min_element(memory.certificates.begin(), memory.certificates.end(),
-                       [&](const auto& x, const auto& y) { return farness(x) < farness(y); });
-  *slot = {pose_a, pose_b, gap};
+  return *std::min_element(memory.certificates.begin(), memory.certificates.end(),
+                           [&](const auto& x, const auto& y) { return farness(x) < farness(y); });
 }
 
 // The certified gap across axis n (unit, world), less the margin; a positive one is remembered.
@@ -190,8 +189,8 @@ double separationAlong(PairMemory& memory, const Vector3& n, const CollisionGeom
                        const Transform& pose_b) {
   const double gap = slabGap(n, a, pose_a, b, pose_b) - kCertificateMargin;
   if (!(gap > 0)) return 0.0;
-  memory.axis = pose_a.linear().transpose() * n;
-  remember(memory, pose_a, pose_b, gap);
+  nearestCertificate(memory, pose_a, pose_b, true) = {pose_a, pose_b,
+                                                      pose_a.linear().transpose() * n, gap};
   return gap;
 }
 
@@ -220,9 +219,10 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
   if (certified(memory, a, pose_a, b, pose_b, by)) return true;
-  // The axis that separated them last time, first: nearby poses are usually still apart by it.
-  if (!memory.axis.isZero()) {
-    const double gap = separationAlong(memory, pose_a.linear() * memory.axis, a, pose_a, b, pose_b);
+  // The axis that separated them in the nearest placement, first: nearby poses are usually still
+  // apart by it.
+  if (const Vector3 axis = nearestCertificate(memory, pose_a, pose_b, false).axis; !axis.isZero()) {
+    const double gap = separationAlong(memory, pose_a.linear() * axis, a, pose_a, b, pose_b);
     if (gap > by) return true;
     if (gap > 0 && by > 0) return false;  // apart, but maybe not by enough: GJK would not say more
   }
