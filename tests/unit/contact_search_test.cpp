@@ -20,6 +20,7 @@
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/material.hpp"
 #include "graspkit/world.hpp"
+#include "random_hand.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -80,6 +81,18 @@ TwoCubes twoCubes(double gap, double dx = 0, double dy = 0,
     out.upper = BodyRef::body(out.world.addBody(upper));
   }
   return out;
+}
+
+// Two cubes at a random gap and shift, the upper one tilted about x and y by random angles.
+TwoCubes tiltedCubes(std::mt19937& random, std::uniform_real_distribution<double>& gap,
+                     std::uniform_real_distribution<double>& shift,
+                     std::uniform_real_distribution<double>& tilt) {
+  TwoCubes s = twoCubes(gap(random), shift(random), shift(random));
+  Transform pose = s.world.bodies()[1].pose;
+  pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitX()));
+  pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitY()));
+  s.world.bodies()[1].setPose(pose);
+  return s;
 }
 
 // Each expected point matched by exactly one contact's position1.
@@ -171,11 +184,7 @@ TEST(InContact, AnswersWhetherFindContactsFindsAny) {
   std::uniform_real_distribution<double> gap(-0.2, 0.3), shift(-25, 25), tilt(-0.02, 0.02);
   int with = 0, without = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    TwoCubes s = twoCubes(gap(random), shift(random), shift(random));
-    Transform pose = s.world.bodies()[1].pose;
-    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitX()));
-    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitY()));
-    s.world.bodies()[1].setPose(pose);
+    TwoCubes s = tiltedCubes(random, gap, shift, tilt);
     for (const auto& [a, b] : {std::pair{s.upper, s.lower}, std::pair{s.lower, s.upper}}) {
       const bool found = !findContacts(s.world, a, b).contacts.empty();
       ASSERT_EQ(inContact(s.world, a, b), found) << "trial " << trial;
@@ -223,11 +232,7 @@ TEST(SurfacesWithin, AgreesWithFclOnTiltedCubes) {
   std::uniform_real_distribution<double> gap(-0.5, 3.0), shift(-25, 25), tilt(-0.3, 0.3);
   int near = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    TwoCubes s = twoCubes(gap(random), shift(random), shift(random));
-    Transform pose = s.world.bodies()[1].pose;
-    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitX()));
-    pose.rotate(Eigen::AngleAxisd(tilt(random), Vector3::UnitY()));
-    s.world.bodies()[1].setPose(pose);
+    TwoCubes s = tiltedCubes(random, gap, shift, tilt);
     near += agreesWithFclAbout(s.world, s.upper, s.lower, "trial " + std::to_string(trial));
   }
   EXPECT_GT(near, 200);
@@ -238,18 +243,9 @@ TEST(SurfacesWithin, AgreesWithFclAroundGraspItsMug) {
   World world = loadWorldFile(*test::graspitDataDir() / "worlds" / "plannerMug.xml");
   const Transform mug_pose = bodyPose(world, BodyRef::body(0));
   std::mt19937 random(9);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   int near = 0;
   for (int trial = 0; trial < 150; ++trial) {  // random hand poses and postures by the mug
-    const Vector3 axis(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
-    Transform pose = Transform::Identity();
-    pose.linear() = Eigen::AngleAxisd(6.3 * unit(random), axis.normalized()).toRotationMatrix();
-    pose.translation() = mug_pose.translation() +
-                         160 * Vector3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
-    world.setRobotPose(0, pose);
-    std::vector<double> dofs(4);
-    for (double& d : dofs) d = 2.4 * unit(random);
-    world.setDofValues(0, dofs);
+    test::placeHandRandomlyNear(world, mug_pose.translation(), random);
     for (const BodyRef& link : worldBodies(world))
       if (link.isLink())
         near += agreesWithFclAbout(world, link, BodyRef::body(0), "trial " + std::to_string(trial));

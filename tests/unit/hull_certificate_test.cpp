@@ -14,6 +14,7 @@
 #include "graspkit/body_ref.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/world.hpp"
+#include "random_hand.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -100,18 +101,9 @@ TEST(HullCertificate, NeverContradictsFclAroundGraspItsMug) {
   const auto mug = collisionGeometry(bodyModel(world, BodyRef::body(0)).mesh);
   const Transform mug_pose = bodyPose(world, BodyRef::body(0));
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   Tally tally;
   for (int trial = 0; trial < 400; ++trial) {  // random hand poses and postures near the mug
-    const Vector3 axis(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
-    Transform pose = Transform::Identity();
-    pose.linear() = Eigen::AngleAxisd(6.3 * unit(random), axis.normalized()).toRotationMatrix();
-    pose.translation() = mug_pose.translation() +
-                         160 * Vector3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5);
-    world.setRobotPose(0, pose);
-    std::vector<double> dofs(4);
-    for (double& d : dofs) d = 2.4 * unit(random);
-    world.setDofValues(0, dofs);
+    test::placeHandRandomlyNear(world, mug_pose.translation(), random);
     compareLinks(world, *mug, mug_pose, tally, "trial " + std::to_string(trial));
   }
   EXPECT_GT(tally.near, 100);
