@@ -10,6 +10,7 @@
 #include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
+#include "io/export_text.hpp"
 #include "io/off_text.hpp"
 #include "xml.hpp"
 
@@ -258,7 +259,7 @@ std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& opti
       break;
   }
   xml += fmt::format("  <geometryFile type=\"{}\">{}</geometryFile>\n", type,
-                     mesh_file.filename().string());
+                     io::xmlEscaped(mesh_file.filename().string()));
   if (options.scale != 1.0)
     xml += fmt::format("  <geometryScaling>{}</geometryScaling>\n", options.scale);
   return xml + "</root>\n";

@@ -17,11 +17,16 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <H5PLpublic.h>
+
 #include <algorithm>
+#include <cmath>
 #include <mutex>
+#include <type_traits>
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/input_file.hpp"
+#include "graspkit/io/output_file.hpp"
 
 namespace graspkit {
 namespace {
@@ -45,6 +50,8 @@ class Handle {
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
+  Handle& operator=(Handle&&) = delete;
   operator hid_t() const { return id_; }
   bool valid() const { return id_ >= 0; }
 
@@ -217,6 +224,12 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
   w.array(contacts, "normals", H5T_NATIVE_DOUBLE, {offsets.back(), 3}, normals.data());
 }
 
+// Reads a dataset file that may have been written by anyone, so libhdf5 is never let to reach
+// past the file's own bytes: every link on a path must be a hard link (an external link opens
+// another file), no dataset may keep its data in other files (external raw storage, virtual
+// datasets), no filter plugin is loaded, and every array's size is checked before memory is
+// taken for it (an unfiltered array must hold its bytes in the file; the whole read never takes
+// more than an input file may hold). Values must be finite.
 class Reader {
  public:
   Reader(const fs::path& file, hid_t handle) : file_(file), handle_(handle) {}
@@ -224,53 +237,72 @@ class Reader {
   // The dataset at `path`, its shape checked against `shape` (0: any length), read as `type`.
   template <class T>
   std::vector<T> array(const char* path, hid_t type, std::vector<hsize_t> shape) {
-    Handle set(H5Dopen2(handle_, path, H5P_DEFAULT), &H5Dclose);
-    if (!set.valid()) fail(path, "is missing");
+    Handle set = open(path);
     Handle space(H5Dget_space(set), &H5Sclose);
     const int rank = H5Sget_simple_extent_ndims(space);
-    std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+    if (rank < 0 || rank > 8) fail(path, "has an unreadable shape");
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
     H5Sget_simple_extent_dims(space, dims.data(), nullptr);
     if (dims.size() != shape.size()) fail(path, fmt::format("has {} dimensions", dims.size()));
     hsize_t count = 1;
     for (std::size_t k = 0; k < dims.size(); ++k) {
       if (shape[k] != 0 && dims[k] != shape[k])
         fail(path, fmt::format("has {} rows along dimension {}, not {}", dims[k], k, shape[k]));
+      if (dims[k] != 0 && count > kMaxInputFileBytes / dims[k])
+        fail(path, "is larger than a dataset file may hold");
       count *= dims[k];
     }
+    if (H5Sget_simple_extent_type(space) == H5S_NULL) count = 0;
+    take(path, set, count, sizeof(T));
     std::vector<T> data(count);
     if (count > 0 && H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
       fail(path, "cannot be read");
+    if constexpr (std::is_floating_point_v<T>) {
+      for (const T value : data)
+        if (!std::isfinite(value)) fail(path, "holds a value that is not a finite number");
+    }
     last_dims_ = dims;
     return data;
   }
 
   std::string text(const char* path) {
-    Handle set(H5Dopen2(handle_, path, H5P_DEFAULT), &H5Dclose);
-    if (!set.valid()) fail(path, "is missing");
+    Handle set = open(path);
+    Handle file_type(H5Dget_type(set), &H5Tclose);
+    Handle space(H5Dget_space(set), &H5Sclose);
+    if (H5Tget_class(file_type) != H5T_STRING || H5Tis_variable_str(file_type) <= 0 ||
+        H5Sget_simple_extent_npoints(space) != 1)
+      fail(path, "is not one variable-length string");
     Handle type(Writer::stringType(), &H5Tclose);
     char* value = nullptr;
     if (H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0 || !value)
       fail(path, "is not a string");
     std::string out(value);
-    Handle space(H5Dget_space(set), &H5Sclose);
     H5Dvlen_reclaim(type, space, H5P_DEFAULT, &value);
     return out;
   }
 
   double number(const char* path) { return array<double>(path, H5T_NATIVE_DOUBLE, {}).at(0); }
 
+  // A root attribute holding one number of the class `kind` (integer or float).
   template <class T>
-  T attribute(const char* name, hid_t type) {
-    Handle attr(H5Aopen(handle_, name, H5P_DEFAULT), &H5Aclose);
-    if (!attr.valid()) fail(name, "(an attribute of the file) is missing");
+  T attribute(const char* name, hid_t type, H5T_class_t kind) {
+    Handle attr = openAttribute(name);
+    Handle file_type(H5Aget_type(attr), &H5Tclose);
+    Handle space(H5Aget_space(attr), &H5Sclose);
+    if (H5Tget_class(file_type) != kind || H5Sget_simple_extent_npoints(space) != 1)
+      fail(name, "is not one number");
     T value{};
     if (H5Aread(attr, type, &value) < 0) fail(name, "cannot be read");
     return value;
   }
 
   std::string textAttribute(const char* name) {
-    Handle attr(H5Aopen(handle_, name, H5P_DEFAULT), &H5Aclose);
-    if (!attr.valid()) fail(name, "(an attribute of the file) is missing");
+    Handle attr = openAttribute(name);
+    Handle file_type(H5Aget_type(attr), &H5Tclose);
+    Handle space(H5Aget_space(attr), &H5Sclose);
+    if (H5Tget_class(file_type) != H5T_STRING || H5Tis_variable_str(file_type) <= 0 ||
+        H5Sget_simple_extent_npoints(space) != 1)
+      fail(name, "is not one variable-length string");
     Handle type(Writer::stringType(), &H5Tclose);
     char* value = nullptr;
     if (H5Aread(attr, type, &value) < 0 || !value) fail(name, "is not a string");
@@ -286,15 +318,75 @@ class Reader {
   }
 
  private:
+  // Opens the dataset at the absolute `path` after checking that each step of the path is a
+  // hard link and that the dataset keeps its data inside this file.
+  Handle open(const char* path) {
+    std::string prefix;
+    for (const char* c = path + 1;; ++c) {
+      if (*c != '/' && *c != '\0') continue;
+      prefix.assign(path, c);
+      if (H5Lexists(handle_, prefix.c_str(), H5P_DEFAULT) <= 0) fail(path, "is missing");
+      H5L_info_t link{};
+      if (H5Lget_info(handle_, prefix.c_str(), &link, H5P_DEFAULT) < 0 ||
+          link.type != H5L_TYPE_HARD)
+        fail(path, fmt::format("is reached through '{}', which is not a hard link (external "
+                               "and soft links are refused)",
+                               prefix));
+      if (*c == '\0') break;
+    }
+    Handle set(H5Dopen2(handle_, path, H5P_DEFAULT), &H5Dclose);
+    if (!set.valid()) fail(path, "is not a dataset");
+    Handle creation(H5Dget_create_plist(set), &H5Pclose);
+    if (!creation.valid() || H5Pget_layout(creation) == H5D_VIRTUAL)
+      fail(path, "is a virtual dataset (data in other files is never read)");
+    if (H5Pget_external_count(creation) != 0)
+      fail(path, "keeps its data in external files (never read)");
+    filtered_ = H5Pget_nfilters(creation) > 0;
+    return set;
+  }
+
+  Handle openAttribute(const char* name) {
+    if (H5Aexists(handle_, name) <= 0) fail(name, "(an attribute of the file) is missing");
+    Handle attr(H5Aopen(handle_, name, H5P_DEFAULT), &H5Aclose);
+    if (!attr.valid()) fail(name, "cannot be opened");
+    return attr;
+  }
+
+  // Counts `count` elements of `size` bytes against the read's budget. An unfiltered dataset
+  // must store its bytes: a sparse one (a few KB declaring gigabytes) is refused.
+  void take(const char* path, hid_t set, hsize_t count, std::size_t size) {
+    if (count == 0) return;
+    Handle file_type(H5Dget_type(set), &H5Tclose);
+    const std::size_t stored = H5Tget_size(file_type);
+    if (!filtered_ && H5Dget_storage_size(set) < count * stored)
+      fail(path, "declares more values than the file stores");
+    const hsize_t bytes = count * std::max(size, stored);
+    if (bytes > kMaxInputFileBytes - taken_)
+      fail(path, fmt::format("would take more than the {} bytes a dataset file may hold",
+                             kMaxInputFileBytes));
+    taken_ += bytes;
+  }
+
   fs::path file_;
   hid_t handle_;
   std::vector<hsize_t> last_dims_;
+  bool filtered_ = false;
+  hsize_t taken_ = 0;
 };
 
-Transform poseAt(const std::vector<double>& values, std::size_t i) {
+// Grasp i's pose from rows of 4 x 4 matrices; a matrix that is not a rigid motion (a rotation
+// and a translation) is refused rather than silently used.
+Transform poseAt(const Reader& r, const char* path, const std::vector<double>& values,
+                 std::size_t i) {
   Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m;
   std::copy(values.begin() + static_cast<long>(16 * i),
             values.begin() + static_cast<long>(16 * i + 16), m.data());
+  const Matrix3 rotation = m.topLeftCorner<3, 3>();
+  constexpr double kTolerance = 1e-6;
+  if (!(m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).isZero(0.0) ||
+      !(rotation.transpose() * rotation - Matrix3::Identity()).isZero(kTolerance) ||
+      rotation.determinant() < 0.0)
+    r.fail(path, fmt::format("holds a matrix that is not a rigid motion (grasp {})", i));
   Transform pose;
   pose.matrix() = m;
   return pose;
@@ -302,12 +394,12 @@ Transform poseAt(const std::vector<double>& values, std::size_t i) {
 
 GraspDataset readFile(const fs::path& file, hid_t handle) {
   Reader r(file, handle);
-  if (const int schema = r.attribute<int>("schema_version", H5T_NATIVE_INT);
+  if (const int schema = r.attribute<int>("schema_version", H5T_NATIVE_INT, H5T_INTEGER);
       schema != kSchemaVersion)
     r.fail("schema_version", fmt::format("is {}; this graspkit reads {}", schema, kSchemaVersion));
   GraspDataset dataset;
   dataset.engineVersion = r.textAttribute("engine_version");
-  dataset.seed = r.attribute<std::uint64_t>("seed", H5T_NATIVE_UINT64);
+  dataset.seed = r.attribute<std::uint64_t>("seed", H5T_NATIVE_UINT64, H5T_INTEGER);
   dataset.objectFile = r.text("/object/file");
   dataset.objectName = r.text("/object/name");
   dataset.objectMass = r.number("/object/mass");
@@ -338,8 +430,8 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     if (offsets[i] > offsets[i + 1] || offsets[i + 1] > m)
       r.fail("/grasps/contacts/offsets", "is not increasing within the contacts");
     DatasetGrasp g;
-    g.grasp = poseAt(closed_poses, i);
-    g.pregrasp = poseAt(open_poses, i);
+    g.grasp = poseAt(r, "/grasps/transforms", closed_poses, i);
+    g.pregrasp = poseAt(r, "/grasps/pregrasp_transforms", open_poses, i);
     g.openDofs.assign(open.begin() + static_cast<long>(i * dofs),
                       open.begin() + static_cast<long>((i + 1) * dofs));
     g.closedDofs.assign(closed.begin() + static_cast<long>(i * dofs),
@@ -349,6 +441,8 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     g.epsilon = epsilon[i];
     g.volume = volume[i];
     g.forceClosure = force_closure[i] != 0;
+    if (held[i] < -1 || held[i] > 1)
+      r.fail("/grasps/qualities/held", "holds a value not -1, 0 or 1");
     g.held = held[i];
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       g.contactPoints.emplace_back(points[3 * k], points[3 * k + 1], points[3 * k + 2]);
@@ -364,6 +458,7 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
 void saveGraspDataset(const GraspDataset& dataset, const fs::path& file) {
   const std::lock_guard lock(hdf5Mutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become graspkit::Error, not stderr
+  checkReplaceable(file);
   const fs::path temporary =
       file.parent_path() / fmt::format(".{}.{}.tmp", file.filename().string(), ::getpid());
   try {
@@ -383,10 +478,19 @@ void saveGraspDataset(const GraspDataset& dataset, const fs::path& file) {
 }
 
 GraspDataset loadGraspDataset(const fs::path& file) {
+  // The file's bytes come through the read gate (a host's read policy, a Lua sandbox) and
+  // libhdf5 reads them from memory: it never opens the path itself.
+  const std::string bytes = readInputFile(file);
   const std::lock_guard lock(hdf5Mutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  checkInputFile(file);  // the read gate: a host's read policy (a Lua sandbox) applies here too
-  Handle handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), &H5Fclose);
+  H5PLset_loading_state(0);  // a dataset's filter never loads a shared library
+  if (bytes.empty()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
+  Handle access(H5Pcreate(H5P_FILE_ACCESS), &H5Pclose);
+  if (H5Pset_fapl_core(access, 1 << 16, 0) < 0 ||
+      H5Pset_file_image(access, const_cast<char*>(bytes.data()), bytes.size()) < 0)
+    throw Error(SourceLocation{file.string()}, "HDF5 cannot hold the file in memory");
+  // The core driver refuses an image whose name exists on disk; this name never can.
+  Handle handle(H5Fopen("/proc/self/graspkit-dataset-image", H5F_ACC_RDONLY, access), &H5Fclose);
   if (!handle.valid()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
   return readFile(file, handle);
 }

@@ -11,6 +11,7 @@
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/material.hpp"
+#include "io/export_text.hpp"
 #include "io/off_text.hpp"
 
 namespace graspkit {
@@ -39,8 +40,9 @@ class GraspitWriter {
     fs::create_directories(folder_ / "iv");
     std::ostringstream xml;
     xml << "<?xml version=\"1.0\" ?>\n";
-    xml << fmt::format("<!-- written by graspkit from {} -->\n", robot_.file.filename().string());
-    xml << fmt::format("<robot type=\"{}\">\n", robot_.type);
+    xml << fmt::format("<!-- written by graspkit from {} -->\n",
+                       io::xmlCommentText(robot_.file.filename().string()));
+    xml << fmt::format("<robot type=\"{}\">\n", io::xmlEscaped(robot_.type));
     xml << fmt::format("    <palm>{}</palm>\n",
                        body("palm", robot_.palm.get(), Transform::Identity()));
     for (const Dof& dof : robot_.dofs) {
@@ -57,7 +59,7 @@ class GraspitWriter {
     }
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c), xml);
     xml << "</robot>\n";
-    const fs::path file = folder_ / (robot_.name + ".xml");
+    const fs::path file = folder_ / (io::fileStem(robot_.name, "robot") + ".xml");
     writeFileAtomically(file, xml.str());
     return file;
   }

@@ -16,6 +16,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/output_file.hpp"
+#include "io/export_text.hpp"
 #include "io/stl_bytes.hpp"
 
 namespace graspkit {
@@ -50,15 +51,16 @@ class MjcfWriter {
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c));
     body_ << "    </body>\n";
     std::ostringstream text;
-    text << fmt::format("<!-- written by graspkit from {} -->\n", robot_.file.filename().string());
-    text << fmt::format("<mujoco model=\"{}\">\n", robot_.name);
+    text << fmt::format("<!-- written by graspkit from {} -->\n",
+                        io::xmlCommentText(robot_.file.filename().string()));
+    text << fmt::format("<mujoco model=\"{}\">\n", io::xmlEscaped(robot_.name));
     text << "  <compiler angle=\"radian\" meshdir=\"meshes\" inertiafromgeom=\"false\"/>\n";
     text << "  <asset>\n" << assets_.str() << "  </asset>\n";
     text << "  <worldbody>\n" << body_.str() << "  </worldbody>\n";
     if (!equalities_.str().empty())
       text << "  <equality>\n" << equalities_.str() << "  </equality>\n";
     text << "</mujoco>\n";
-    const fs::path file = folder_ / (robot_.name + ".xml");
+    const fs::path file = folder_ / (io::fileStem(robot_.name, "robot") + ".xml");
     writeFileAtomically(file, text.str());
     return file;
   }

@@ -70,14 +70,28 @@ int nameUnnamed(int fd, const fs::path& temporary) {
 
 }  // namespace
 
-void writeFileAtomically(const fs::path& file, std::string_view text) {
+void checkReplaceable(const fs::path& file) {
   std::error_code ec;
-  const fs::file_status target = fs::status(file, ec);
+  const fs::file_status target = fs::status(file, ec);  // through symlinks: what would be lost
+  if (fs::exists(target) && !fs::is_regular_file(target)) {
+    throw Error(SourceLocation{file.string()},
+                fmt::format("not a regular file ({}); graspkit replaces only regular files",
+                            fs::is_directory(target) ? "a folder"
+                            : fs::is_fifo(target)    ? "a FIFO"
+                            : fs::is_character_file(target) || fs::is_block_file(target)
+                                ? "a device"
+                                : "a special file"));
+  }
   if (fs::is_regular_file(target) &&
       (target.permissions() & fs::perms::owner_write) == fs::perms::none) {
     throw Error(SourceLocation{file.string()},
                 "the file is read-only; make it writable to replace it");
   }
+}
+
+void writeFileAtomically(const fs::path& file, std::string_view text) {
+  std::error_code ec;
+  checkReplaceable(file);
   const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   const fs::path temporary = temporaryFor(file);
   bool named = false;  // whether `temporary` exists and must be removed on failure

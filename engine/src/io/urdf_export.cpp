@@ -19,6 +19,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
+#include "io/export_text.hpp"
 #include "io/stl_bytes.hpp"
 
 namespace graspkit {
@@ -62,14 +63,15 @@ class UrdfWriter {
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c), palm);
     std::ostringstream text;
     text << "<?xml version=\"1.0\"?>\n";
-    text << fmt::format("<!-- written by graspkit from {} -->\n", robot_.file.filename().string());
-    text << fmt::format("<robot name=\"{}\">\n", robot_.name);
+    text << fmt::format("<!-- written by graspkit from {} -->\n",
+                        io::xmlCommentText(robot_.file.filename().string()));
+    text << fmt::format("<robot name=\"{}\">\n", io::xmlEscaped(robot_.name));
     text << links_.str();
     // DOF order is the order of the joints that mimic nothing: each DOF's first joint first.
     for (const std::string& joint : masters_) text << joint;
     text << joints_.str();
     text << "</robot>\n";
-    const fs::path file = folder_ / (robot_.name + ".urdf");
+    const fs::path file = folder_ / (io::fileStem(robot_.name, "robot") + ".urdf");
     writeFileAtomically(file, text.str());
     return file;
   }

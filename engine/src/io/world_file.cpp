@@ -17,6 +17,7 @@
 #include "graspkit/log.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/version.hpp"
+#include "io/export_text.hpp"
 #include "xml.hpp"
 
 namespace graspkit {
@@ -223,7 +224,7 @@ std::string worldText(const World& world, const SaveOptions& options) {
     const char* tag = body.kind == BodyKind::Graspable ? "graspableBody" : "obstacle";
     const std::string name = body.filename.empty() ? relativeName(body.model->file, options.root)
                                                    : body.filename.generic_string();
-    out << "    <" << tag << ">\n        <filename>" << name << "</filename>\n";
+    out << "    <" << tag << ">\n        <filename>" << io::xmlEscaped(name) << "</filename>\n";
     writeTransform(out, body.pose, "        ");
     out << "    </" << tag << ">\n";
   }
@@ -232,7 +233,7 @@ std::string worldText(const World& world, const SaveOptions& options) {
     const std::string name = entry.filename.empty()
                                  ? relativeName(entry.robot.model().file, options.root)
                                  : entry.filename.generic_string();
-    out << "    <robot>\n        <filename>" << name << "</filename>\n"
+    out << "    <robot>\n        <filename>" << io::xmlEscaped(name) << "</filename>\n"
         << "        <dofValues>" << formatDofValues(entry.robot) << "</dofValues>\n";
     writeTransform(out, entry.robot.pose(), "        ");
     out << "    </robot>\n";
@@ -243,7 +244,7 @@ std::string worldText(const World& world, const SaveOptions& options) {
         << "        <parentChain>" << c.parentChain << "</parentChain>\n"
         << "        <childRobot>" << c.childRobot << "</childRobot>\n";
     if (!c.mountFilename.empty()) {
-      out << "        <mountFilename>" << c.mountFilename << "</mountFilename>\n";
+      out << "        <mountFilename>" << io::xmlEscaped(c.mountFilename) << "</mountFilename>\n";
     }
     writeTransform(out, c.offset, "        ");
     out << "    </connection>\n";

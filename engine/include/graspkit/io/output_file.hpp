@@ -8,13 +8,19 @@
 // killed while it writes leaves nothing behind (only a kill in the instant between naming and
 // renaming leaves the named file). On a file system without O_TMPFILE the named file is written
 // directly, and a kill then leaves it. It refuses a target that is read-only (its owner-write
-// permission is off: the user protected it) and reports every failure with the operating
+// permission is off: the user protected it) or that is not a regular file (a FIFO, a device
+// such as /dev/null, a folder: a rename would put a plain file in its place, and as root destroy
+// the device), and reports every failure with the operating
 // system's reason; the temporary file is removed on failure.
 
 #include <filesystem>
 #include <string_view>
 
 namespace graspkit {
+
+// Throws graspkit::Error naming `file` when it exists and is not a writable regular file (the
+// checks writeFileAtomically makes first; writers that rename their own temporaries use it).
+void checkReplaceable(const std::filesystem::path& file);
 
 // Throws graspkit::Error naming `file` and the reason.
 void writeFileAtomically(const std::filesystem::path& file, std::string_view text);
