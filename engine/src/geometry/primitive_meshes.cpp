@@ -1,6 +1,8 @@
 #include "geometry/primitive_meshes.hpp"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace graspkit::geometry {
 
@@ -55,29 +57,56 @@ TriangleMesh cylinderMesh(double radius, double length, int segments) {
   return mesh;
 }
 
-TriangleMesh sphereMesh(double radius, int rings, int segments) {
+namespace {
+
+// A closed surface of revolution about z: a pole at each end and rings (z, radius) between,
+// from south to north.
+TriangleMesh revolvedMesh(double south, double north_z,
+                          const std::vector<std::pair<double, double>>& rings, int segments) {
   TriangleMesh mesh;
-  mesh.vertices.emplace_back(0, 0, -radius);  // south pole
-  for (int r = 1; r < rings; ++r) {
-    const double polar = M_PI * r / rings;  // from the south pole
-    const double z = -radius * std::cos(polar), ring = radius * std::sin(polar);
+  mesh.vertices.emplace_back(0, 0, south);
+  for (const auto& [z, ring] : rings) {
     for (int s = 0; s < segments; ++s) {
       const double angle = 2.0 * M_PI * s / segments;
       mesh.vertices.emplace_back(ring * std::cos(angle), ring * std::sin(angle), z);
     }
   }
   const auto north = static_cast<Index>(mesh.vertices.size());
-  mesh.vertices.emplace_back(0, 0, radius);
+  mesh.vertices.emplace_back(0, 0, north_z);
+  const int count = static_cast<int>(rings.size());
   auto at = [&](int ring, int s) {
     return static_cast<Index>(1 + (ring - 1) * segments + (s % segments));
   };
   for (int s = 0; s < segments; ++s) {
     mesh.triangles.push_back({0, at(1, s + 1), at(1, s)});
-    for (int r = 1; r + 1 < rings; ++r)
+    for (int r = 1; r < count; ++r)
       addQuad(mesh, at(r, s), at(r, s + 1), at(r + 1, s + 1), at(r + 1, s));
-    mesh.triangles.push_back({north, at(rings - 1, s), at(rings - 1, s + 1)});
+    mesh.triangles.push_back({north, at(count, s), at(count, s + 1)});
   }
   return mesh;
+}
+
+}  // namespace
+
+TriangleMesh sphereMesh(double radius, int rings, int segments) {
+  return capsuleMesh(radius, 0.0, rings, segments);
+}
+
+TriangleMesh capsuleMesh(double radius, double length, int rings, int segments) {
+  const double half = 0.5 * length;
+  std::vector<std::pair<double, double>> bands;
+  for (int r = 1; r < rings; ++r) {
+    const double polar = M_PI * r / rings;  // from the south pole
+    const double z = -radius * std::cos(polar), ring = radius * std::sin(polar);
+    // The equator splits into two rings `length` apart (none apart for a sphere).
+    if (length > 0.0 && 2 * r == rings) {
+      bands.emplace_back(-half, ring);
+      bands.emplace_back(half, ring);
+    } else {
+      bands.emplace_back(z + (2 * r < rings ? -half : half), ring);
+    }
+  }
+  return revolvedMesh(-radius - half, radius + half, bands, segments);
 }
 
 }  // namespace graspkit::geometry

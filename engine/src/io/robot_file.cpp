@@ -1,5 +1,6 @@
 #include "graspkit/io/robot_file.hpp"
 
+#include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
 
 #include <algorithm>
@@ -527,6 +528,7 @@ class RobotReader {
 std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, const LoadOptions& options,
                                                 ModelCache* cache) {
   if (isUrdfFile(file)) return loadUrdfFile(file, options);
+  if (isMjcfFile(file)) return loadMjcfFile(file, options);
   // Without a caller's cache, a local one still reads a link file used by several links once.
   ModelCache local;
   ModelCache* used = cache ? cache : &local;

@@ -19,6 +19,7 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
+#include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
 
@@ -38,9 +39,6 @@ constexpr double kNewton = 1.0e6;
 // for revolute joints, graspkit's parallel_jaw for prismatic ones.
 constexpr double kRevoluteKp = 1.0e11, kRevoluteKd = 1.0e7, kRevoluteEffort = 2.5e9;
 constexpr double kPrismaticKp = 1.0e9, kPrismaticKd = 1.0e6, kPrismaticEffort = 1.0e8;
-// Lines closer to parallel than this (1 - cos) share no common normal.
-constexpr double kParallel = 1e-12;
-constexpr double kSamePoint = 1e-9;  // mm
 
 Transform poseTransform(const urdf::Pose& pose) {
   double x, y, z, w;
@@ -58,53 +56,6 @@ Vector3 vector(const urdf::Vector3& v) {
 bool isMovable(const urdf::Joint& joint) {
   return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
          joint.type == urdf::Joint::PRISMATIC;
-}
-
-// A frame whose z axis is `z` (unit) and whose x axis is as close to `hint` as z allows.
-Matrix3 frameWithZ(const Vector3& z, const Vector3& hint) {
-  Vector3 x = hint - hint.dot(z) * z;
-  if (x.norm() < 1e-6) {
-    x = Vector3::UnitY() - z.y() * z;
-    if (x.norm() < 1e-6) x = Vector3::UnitX() - z.x() * z;
-  }
-  x.normalize();
-  Matrix3 frame;
-  frame.col(0) = x;
-  frame.col(1) = z.cross(x);
-  frame.col(2) = z;
-  return frame;
-}
-
-// The DH transform's constant part for a joint at the origin of frame `before` (whose z is the
-// joint's axis) such that the frame after it has its z on the next joint's axis line (point p,
-// unit direction u), its x along the common normal. Returns the joint with theta, d, a, alpha
-// set and writes the frame after it.
-void denavitHartenbergTo(const Transform& before, const Vector3& p, const Vector3& u, Joint& joint,
-                         Transform& after) {
-  const Vector3 o = before.translation();
-  const Vector3 z = before.linear().col(2);
-  const Vector3 x_before = before.linear().col(0);
-  const Vector3 w = o - p;
-  const double b = z.dot(u);
-  const double denom = 1.0 - b * b;
-  Vector3 c1, c2, x;
-  if (denom > kParallel) {
-    const double s = (b * u.dot(w) - z.dot(w)) / denom;
-    const double t = (u.dot(w) - b * z.dot(w)) / denom;
-    c1 = o + s * z;
-    c2 = p + t * u;
-    x = (c2 - c1).norm() > kSamePoint ? Vector3((c2 - c1).normalized())
-                                      : Vector3(z.cross(u).normalized());
-  } else {
-    c1 = o;
-    c2 = p + u.dot(o - p) * u;
-    x = (c2 - c1).norm() > kSamePoint ? Vector3((c2 - c1).normalized()) : x_before;
-  }
-  joint.theta = std::atan2(x_before.cross(x).dot(z), x_before.dot(x));
-  joint.d = (c1 - o).dot(z);
-  joint.a = (c2 - c1).dot(x);
-  joint.alpha = std::atan2(z.cross(u).dot(x), z.dot(u));
-  after = before * joint.transform(0.0);
 }
 
 class UrdfReader {
@@ -455,7 +406,7 @@ class UrdfReader {
     chain.firstJoint = robot.jointCount();
     int consumed = 0;  // joints since the last link
     Transform before = Transform::Identity();
-    before.linear() = frameWithZ(axes[0], Vector3::UnitX());
+    before.linear() = io::frameWithZ(axes[0], Vector3::UnitX());
     before.translation() = points[0];
     chain.base = before;
     for (std::size_t i = 0; i < joints.size(); ++i) {
@@ -464,7 +415,7 @@ class UrdfReader {
       dh.type = j.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
       Transform after;
       if (i + 1 < joints.size()) {
-        denavitHartenbergTo(before, points[i + 1], axes[i + 1], dh, after);
+        io::denavitHartenbergTo(before, points[i + 1], axes[i + 1], dh, after);
       } else {
         after = before * dh.transform(0.0);
       }

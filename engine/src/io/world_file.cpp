@@ -294,7 +294,7 @@ World loadAnyFile(const fs::path& file, const LoadOptions& options, ModelCache* 
   const std::string root = isMeshFile(file) ? "" : rootName(file);
   if (root == "world") return loadWorldFile(file, options, cache);
   World world;
-  if (root == "robot") {
+  if (root == "robot" || root == "mujoco") {
     world.addRobot(Robot(loadRobotFile(file, options, cache)), file);
   } else {
     Body body;

@@ -1,20 +1,36 @@
 #pragma once
-// Robots written as MJCF, so that MuJoCo can load GraspIt!'s hands (and act as a second method
-// for their dynamics).
+// Robots read from MJCF (MuJoCo Menagerie's hands), and any robot written as MJCF so that
+// MuJoCo can load GraspIt!'s hands (and act as a second method for their dynamics).
 
 #include <filesystem>
 
+#include "graspkit/io/load_options.hpp"
 #include "graspkit/robot.hpp"
 
 namespace graspkit {
+
+// Whether `file` is an MJCF file: named .xml or .mjcf with a <mujoco> root element.
+bool isMjcfFile(const std::filesystem::path& file);
+
+// Reads an MJCF model as a hand (docs/hands.md, "MJCF"): <include>, <compiler> (angle, meshdir,
+// assetdir, eulerseq, autolimits), <default> classes with class/childclass, the body tree with
+// pos/quat/axisangle/euler/xyaxes/zaxis and <frame>, hinge and slide joints (a free, ball or any
+// joint of a top-level body moves the hand in the world and is left out, with a warning),
+// collision geoms (mesh with scale/refpos/refquat, box, sphere, capsule, cylinder, ellipsoid,
+// fromto; contype = conaffinity = 0 is visual only), <inertial> or geom mass, one DOF per
+// actuator (joint or fixed tendon; none: one per joint), joint equalities with linear polycoef,
+// connect loops closed by a linear coupling fitted to the solved loop, and <contact><exclude>.
+// Bodies fixed to the world form the palm. Errors name file, line and element.
+std::shared_ptr<const RobotModel> loadMjcfFile(const std::filesystem::path& file,
+                                               const LoadOptions& options = {});
 
 // Writes `robot` as FOLDER/<name>.xml with its link meshes as binary STL in FOLDER/meshes
 // (metres, kilograms), and returns the MJCF's path. The palm is a fixed body; each link is a
 // body at its frame with a hinge or slide joint on its DH axis and the joint's limits, its mesh
 // as a geom and its mass properties as <inertial> (inertiafromgeom is off; an inertia MuJoCo
-// would refuse, not positive definite, becomes a solid sphere's of the body's radius); a DOF's other joints
-// follow its first joint through <equality><joint polycoef>. MuJoCo joint values are graspkit's
-// joint values (ratio x DOF value). Controllers, materials and contacts are not written.
+// would refuse, not positive definite, becomes a solid sphere's of the body's radius); a DOF's
+// other joints follow its first joint through <equality><joint polycoef>. MuJoCo joint values are
+// graspkit's joint values (ratio x DOF value). Controllers, materials and contacts are not written.
 std::filesystem::path saveMjcf(const RobotModel& robot, const std::filesystem::path& folder);
 
 }  // namespace graspkit
