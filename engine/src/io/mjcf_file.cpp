@@ -189,6 +189,9 @@ class MjcfReader {
         throw Error(xml::at(file, *e), fmt::format("include cycle: '{}' includes itself", name));
       if (stack.size() >= kMaxIncludeDepth)
         throw Error(xml::at(file, *e), "includes nest deeper than 16 files");
+      std::error_code ec;
+      if (!fs::is_regular_file(included, ec))
+        throw Error(xml::at(file, *e), fmt::format("included file '{}' not found", name));
       const xml::Document& doc = document(included);
       if (std::string_view(doc.root().Name()) != "mujoco")
         throw Error(xml::at(included, doc.root()),
@@ -320,6 +323,8 @@ class MjcfReader {
       const fs::path folder = file_.parent_path() / meshdir_;
       asset.file = fs::path(file).is_absolute() ? fs::path(file) : folder / file;
       asset.scale = vector3(c, cls, "scale", Vector3::Ones());
+      if (asset.scale.cwiseAbs().minCoeff() < 1e-12)
+        throw Error(c.where(), fmt::format("mesh '{}': a zero scale", mesh_name));
       asset.refpos = kMetre * vector3(c, cls, "refpos", Vector3::Zero());
       if (const auto q = numbers(c, cls, "refquat", 4, 4))
         asset.refquat =
@@ -534,6 +539,8 @@ class MjcfReader {
     auto sizeAt = [&](std::size_t i) {
       if (!size || size->size() <= i)
         throw Error(s.where(), fmt::format("a {} geom needs {} size values", type, i + 1));
+      if (!((*size)[i] > 0.0))
+        throw Error(s.where(), fmt::format("a {} geom's size must be positive", type));
       return kMetre * (*size)[i];
     };
     double half_length = -1.0;  // from fromto
@@ -611,6 +618,9 @@ class MjcfReader {
     reference.linear() = a.refquat.conjugate().toRotationMatrix();
     reference = reference * Eigen::Translation3d(-a.refpos);
     transformMesh(mesh, reference * to_mm);
+    // A mirroring scale (MuJoCo allows one) turns the surface inside out: keep it outward.
+    if (a.scale.prod() < 0.0)
+      for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
     if (bodies_[body].meshFile.empty()) bodies_[body].meshFile = a.file.string();
     return mesh;
   }
