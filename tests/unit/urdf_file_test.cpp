@@ -18,6 +18,7 @@
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/log.hpp"
 #include "graspkit/material.hpp"
 #include "test_paths.hpp"
 
@@ -405,6 +406,49 @@ TEST(UrdfFile, BadFilesNameFileLineAndElement) {
       EXPECT_FALSE(e.where().element.empty()) << e.what();
     }
   }
+}
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// A gripper whose second finger mimics the first with multiplier -1 and carries the same limits
+// [0, 0.548] as the first: intersected, they would leave the DOF [0, 0]. ROS ignores a mimic
+// joint's limits; so does graspkit, with a warning that names the mimic.
+TEST(UrdfFile, AMimicJointsOwnLimitsNeverCollapseItsDof) {
+  const std::string text = R"(<?xml version="1.0"?>
+<robot name="mirror">
+  <link name="palm"><collision><geometry><box size="0.08 0.04 0.02"/></geometry></collision></link>
+  <link name="a"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <link name="b"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <joint name="ja" type="revolute">
+    <parent link="palm"/><child link="a"/><origin xyz="-0.03 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.548" effort="1" velocity="1"/>
+  </joint>
+  <joint name="jb" type="revolute">
+    <parent link="palm"/><child link="b"/><origin xyz="0.03 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.548" effort="1" velocity="1"/>
+    <mimic joint="ja" multiplier="-1" offset="0"/>
+  </joint>
+</robot>
+)";
+  std::vector<Warning> warnings;
+  const WarningHandler previous =
+      setWarningHandler([&](const Warning& w) { warnings.push_back(w); });
+  const auto model = loadUrdfFile(writeFile("mirror.urdf", text));
+  setWarningHandler(previous);
+  ASSERT_EQ(model->dofs.size(), 1u);
+  EXPECT_DOUBLE_EQ(model->dofs[0].min, 0.0);
+  EXPECT_DOUBLE_EQ(model->dofs[0].max, 0.548);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].message.find("'jb'"), std::string::npos) << warnings[0].message;
+  EXPECT_EQ(warnings[0].where.line, 10);
+  // At the DOF's top the mimic stands at -0.548, mirrored.
+  Robot robot(model);
+  robot.setDofValues(std::vector<double>{0.548});
+  expectPose(robot.linkPose(1, 0), origin({0.03, 0, 0}) * rotation(Vector3::UnitY(), -0.548));
 }
 
 }  // namespace

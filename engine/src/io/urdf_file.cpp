@@ -439,6 +439,7 @@ class UrdfReader {
         dh.coulombFriction =
             j.dynamics->friction * (dh.type == JointType::Prismatic ? kNewton : kNewtonMetre);
       }
+      if (j.mimic) mimics_[chain.firstJoint + static_cast<int>(chain.joints.size())] = j.name;
       chain.joints.push_back(dh);
       before = after;
       // The link rides on the frame after the joint and keeps its URDF frame, a constant
@@ -479,6 +480,7 @@ class UrdfReader {
   }
 
   void finishDofs(RobotModel& robot) {
+    followMimicLimitsAsRos(robot);
     model::gatherDofJoints(robot);
     for (std::size_t d = 0; d < robot.dofs.size(); ++d) {
       Dof& dof = robot.dofs[d];
@@ -491,6 +493,46 @@ class UrdfReader {
                                 d));
       }
       dof.defaultValue = dof.clamp(0.0);
+    }
+  }
+
+  // ROS takes a mimic joint's value from its joint and ignores the mimic's own limits: here the
+  // DOF's range is its own joint's, and a mimic's limits widen to what that range asks, with a
+  // warning naming the joint where they are passed (they never collapse the DOF).
+  void followMimicLimitsAsRos(RobotModel& robot) {
+    std::vector<std::pair<double, double>> range(robot.dofs.size(),
+                                                 {-std::numeric_limits<double>::infinity(),
+                                                  std::numeric_limits<double>::infinity()});
+    for (const KinematicChain& chain : robot.chains) {
+      for (std::size_t i = 0; i < chain.joints.size(); ++i) {
+        const Joint& joint = chain.joints[i];
+        if (mimics_.count(chain.firstJoint + static_cast<int>(i))) continue;
+        double lo = joint.min / joint.ratio, hi = joint.max / joint.ratio;
+        if (lo > hi) std::swap(lo, hi);
+        range[joint.dof].first = std::max(range[joint.dof].first, lo);
+        range[joint.dof].second = std::min(range[joint.dof].second, hi);
+      }
+    }
+    for (KinematicChain& chain : robot.chains) {
+      for (std::size_t i = 0; i < chain.joints.size(); ++i) {
+        const auto mimic = mimics_.find(chain.firstJoint + static_cast<int>(i));
+        if (mimic == mimics_.end()) continue;
+        Joint& joint = chain.joints[i];
+        const auto [lo, hi] = range[joint.dof];
+        if (!std::isfinite(lo) || !std::isfinite(hi)) continue;
+        double a = joint.ratio * lo, b = joint.ratio * hi;
+        if (a > b) std::swap(a, b);
+        constexpr double kSlack = 1e-9;
+        if (a >= joint.min - kSlack && b <= joint.max + kSlack) continue;
+        const double unit = joint.type == JointType::Prismatic ? kMetre : 1.0;
+        warn(WarningKind::Robot, xml::at(file_, *joint_elements_.at(mimic->second)),
+             fmt::format("mimic joint '{}' is driven to [{:.6g}, {:.6g}], past its own limits "
+                         "[{:.6g}, {:.6g}]; as in ROS, its limits do not narrow DOF {}",
+                         mimic->second, a / unit, b / unit, joint.min / unit, joint.max / unit,
+                         joint.dof));
+        joint.min = std::min(joint.min, a);
+        joint.max = std::max(joint.max, b);
+      }
     }
   }
 
@@ -644,6 +686,7 @@ class UrdfReader {
   std::vector<std::string> joint_order_;
   urdf::ModelInterfaceSharedPtr model_;
   std::map<std::string, int> dof_of_;
+  std::map<int, std::string> mimics_;  // robot-wide joint index -> name, for mimic joints
 };
 
 }  // namespace
