@@ -88,6 +88,18 @@ json robotJson(const Robot& robot) {
     }
     j["chains"].push_back({{"joints", joints}, {"links", links}});
   }
+  // The link pairs collision detection never checks beyond one chain's links and the palm with
+  // each chain's first link: the file's own, and those the hand setup switched off (with why).
+  auto linkName = [&](const LinkRef& ref) {
+    return ref.isBase() ? m.name + "Base" : m.chains[ref.chain].links[ref.link].name;
+  };
+  j["collision_exclusions"] = json::array();
+  for (const CollisionPair& pair : m.disabledCollisions) {
+    j["collision_exclusions"].push_back(
+        {{"links", {linkName(pair.first), linkName(pair.second)}},
+         {"reason",
+          pair.reason.empty() ? std::string("the robot file's <disableCollision>") : pair.reason}});
+  }
   j["triangles"] = m.triangleCount();
   j["eigengrasps"] = m.eigengrasps.identity ? 0 : m.eigengrasps.grasps.size();
   j["virtual_contacts"] = m.virtualContacts.size();
@@ -147,6 +159,10 @@ void printText(const json& j, std::ostream& out) {
         out << fmt::format("  {:<28} t [{}]  q [{}]\n", link["name"].get<std::string>(),
                            fixed(link["translation"]), fixed(link["quaternion"]));
       }
+    }
+    for (const auto& pair : r["collision_exclusions"]) {
+      out << fmt::format("  never checked: {} - {} ({})\n", pair["links"][0].get<std::string>(),
+                         pair["links"][1].get<std::string>(), pair["reason"].get<std::string>());
     }
   }
 }

@@ -22,8 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "graspkit/collision.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -269,6 +271,33 @@ INSTANTIATE_TEST_SUITE_P(
                  ? std::string("robotiq_2f85")
                  : fs::path(info.param.file).stem().string();
     });
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// Shadow DEX-EE's three fingers meet at the zero posture (their middle and distal links
+// collide), yet they are free in most postures: the hand setup keeps those pairs checked, and
+// switches off only what the file excludes.
+TEST(MenagerieHandSetup, FingersThatMeetAtRestStayChecked) {
+  GRASPKIT_REQUIRE_SHARED();
+  const fs::path file = *test::sharedDir() / "hands/menagerie/shadow_dexee/shadow_dexee.xml";
+  if (!fs::exists(file)) GTEST_SKIP() << "SKIPPED: " << file << " not found";
+  const auto model = loadRobotFile(file);
+  for (const CollisionPair& p : model->disabledCollisions)
+    EXPECT_EQ(p.reason, "MJCF <contact><exclude>");
+  World world;
+  world.addRobot(Robot(model));
+  world.setDofValues(0, std::vector<double>(model->dofs.size(), 0.0));
+  int across_fingers = 0;
+  for (const CollidingPair& p : collisionReport(world))
+    if (p.first.link.chain >= 0 && p.second.link.chain >= 0 &&
+        p.first.link.chain != p.second.link.chain)
+      ++across_fingers;
+  EXPECT_GT(across_fingers, 0) << "the fingers should meet at the zero posture";
+}
 
 }  // namespace
 }  // namespace graspkit

@@ -35,6 +35,10 @@ struct FlockOfBirds {
 struct CollisionPair {
   LinkRef first;
   LinkRef second;
+  // Why the pair is never checked: empty for a robot file's own <disableCollision> (and a robot
+  // type's), else the reader's reason ("MJCF <contact><exclude>", "SRDF <disable_collisions>",
+  // "always in collision (64 of 64 postures)", ...). info --json lists them.
+  std::string reason;
 };
 
 struct RobotModel {

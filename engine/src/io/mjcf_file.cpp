@@ -35,6 +35,7 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
+#include "graspkit/self_collision_setup.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
@@ -1116,9 +1117,16 @@ class MjcfReader {
     for (const auto& [a, b] : exclusions_) {
       const auto la = link_of.find(a), lb = link_of.find(b);
       if (la == link_of.end() || lb == link_of.end() || la->second == lb->second) continue;
-      robot->disabledCollisions.push_back({la->second, lb->second});
+      const bool listed = std::any_of(robot->disabledCollisions.begin(),
+                                      robot->disabledCollisions.end(), [&](const CollisionPair& p) {
+                                        return (p.first == la->second && p.second == lb->second) ||
+                                               (p.first == lb->second && p.second == la->second);
+                                      });
+      if (listed) continue;  // two excluded bodies merged into the same links
+      robot->disabledCollisions.push_back({la->second, lb->second, "MJCF <contact><exclude>"});
     }
     robot->eigengrasps = identityEigengrasps(static_cast<int>(robot->dofs.size()));
+    if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
     return robot;
   }
 

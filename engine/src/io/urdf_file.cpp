@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -19,6 +20,7 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
+#include "graspkit/self_collision_setup.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
@@ -89,6 +91,7 @@ class UrdfReader {
     robot->palmFile = palm;
     readDofs(*robot, palm);
     robot->palm = groupBody(palm, Transform::Identity(), palm);
+    for (const auto& [member, frame] : rigidGroup(palm)) link_ref_[member] = LinkRef{};
     // Chains in the order their first links come in the file.
     std::vector<urdf::JointSharedPtr> firsts = childJoints(palm, true);
     std::stable_sort(firsts.begin(), firsts.end(), [&](const auto& a, const auto& b) {
@@ -100,6 +103,8 @@ class UrdfReader {
                   fmt::format("no movable joint hangs on the palm '{}'", palm));
     finishDofs(*robot);
     robot->eigengrasps = identityEigengrasps(static_cast<int>(robot->dofs.size()));
+    readSrdf(*robot);
+    if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
     return robot;
   }
 
@@ -458,6 +463,9 @@ class UrdfReader {
       link.lastJoint = static_cast<int>(i);
       link.frame = after.inverse() * child_frames[i] * carrier_frame;
       link.body = groupBody(j.child_link_name, carrier_frame.inverse(), carrier);
+      for (const auto& [member, frame] : rigidGroup(j.child_link_name))
+        link_ref_[member] =
+            LinkRef{static_cast<int>(robot.chains.size()), static_cast<int>(chain.links.size())};
       chain.links.push_back(std::move(link));
       consumed = 0;
     }
@@ -496,13 +504,47 @@ class UrdfReader {
     }
   }
 
+  // SRDF <disable_collisions link1 link2 reason>: from LoadOptions::srdf, else the .srdf beside
+  // the URDF. Links the hand leaves out (above the palm) are skipped; a name the URDF does not
+  // have is an error.
+  void readSrdf(RobotModel& robot) {
+    fs::path srdf = options_.srdf;
+    if (srdf.empty()) {
+      fs::path beside = file_;
+      beside.replace_extension(".srdf");
+      std::error_code ec;
+      if (!fs::is_regular_file(beside, ec)) return;
+      srdf = beside;
+    }
+    const xml::Document doc(srdf);
+    if (std::string_view(doc.root().Name()) != "robot")
+      throw Error(xml::at(srdf, doc.root()), "the root element of an SRDF file must be <robot>");
+    for (const XMLElement* e : xml::children(doc.root(), "disable_collisions")) {
+      const char* names[2] = {e->Attribute("link1"), e->Attribute("link2")};
+      std::optional<LinkRef> refs[2];
+      for (int k = 0; k < 2; ++k) {
+        if (!names[k]) throw Error(xml::at(srdf, *e), "<disable_collisions> needs link1 and link2");
+        if (!link_elements_.count(names[k]))
+          throw Error(xml::at(srdf, *e), fmt::format("link '{}' is not a link of {}", names[k],
+                                                     file_.filename().string()));
+        const auto ref = link_ref_.find(names[k]);
+        if (ref != link_ref_.end()) refs[k] = ref->second;
+      }
+      if (!refs[0] || !refs[1] || *refs[0] == *refs[1]) continue;
+      const char* reason = e->Attribute("reason");
+      robot.disabledCollisions.push_back(
+          {*refs[0], *refs[1],
+           fmt::format("SRDF <disable_collisions> ({})", reason ? reason : "")});
+    }
+  }
+
   // ROS takes a mimic joint's value from its joint and ignores the mimic's own limits: here the
   // DOF's range is its own joint's, and a mimic's limits widen to what that range asks, with a
   // warning naming the joint where they are passed (they never collapse the DOF).
   void followMimicLimitsAsRos(RobotModel& robot) {
-    std::vector<std::pair<double, double>> range(robot.dofs.size(),
-                                                 {-std::numeric_limits<double>::infinity(),
-                                                  std::numeric_limits<double>::infinity()});
+    std::vector<std::pair<double, double>> range(
+        robot.dofs.size(),
+        {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()});
     for (const KinematicChain& chain : robot.chains) {
       for (std::size_t i = 0; i < chain.joints.size(); ++i) {
         const Joint& joint = chain.joints[i];
@@ -686,7 +728,9 @@ class UrdfReader {
   std::vector<std::string> joint_order_;
   urdf::ModelInterfaceSharedPtr model_;
   std::map<std::string, int> dof_of_;
-  std::map<int, std::string> mimics_;  // robot-wide joint index -> name, for mimic joints
+  std::map<int, std::string> mimics_;
+  std::map<std::string, LinkRef> link_ref_;  // URDF link -> the graspkit link it is part of  //
+                                             // robot-wide joint index -> name, for mimic joints
 };
 
 }  // namespace

@@ -30,6 +30,12 @@ struct LoadOptions {
   std::string urdfPalm;
   Material urdfMaterial = Material::Rubber;
   std::map<std::string, Material> urdfLinkMaterials;
+  // URDF and MJCF hands: switch off the link pairs that collide at rest and in most postures,
+  // or always (graspkit/self_collision_setup.hpp). GraspIt!'s robot files never are.
+  bool switchOffInherentCollisions = true;
+  // URDF: an SRDF whose <disable_collisions> pairs are never checked. Empty: the .srdf beside
+  // the URDF (same stem), when there is one.
+  std::filesystem::path srdf;
 };
 
 // The folders a world's <filename> is resolved against, in order.
