@@ -62,6 +62,7 @@ json robotJson(const Robot& robot) {
                          {"min", dof.min},
                          {"max", dof.max},
                          {"default_velocity", dof.defaultVelocity},
+                         {"closes", dof.defaultVelocity < 0.0 ? "-" : "+"},
                          {"joints", dof.joints}});
   }
   j["base"] = pose(m.name + "Base", robot.pose());
@@ -152,6 +153,10 @@ void printText(const json& j, std::ostream& out) {
                          provider["description"].get<std::string>());
     }
     out << fmt::format("  dof values [{}]\n", fixed(r["dof_values"]));
+    std::string closes;
+    for (const auto& dof : r["dofs"])
+      closes += (closes.empty() ? "" : " ") + dof["closes"].get<std::string>();
+    out << fmt::format("  closes     [{}] (+: towards the upper limit)\n", closes);
     out << fmt::format("  {:<28} t [{}]  q [{}]\n", r["base"]["name"].get<std::string>(),
                        fixed(r["base"]["translation"]), fixed(r["base"]["quaternion"]));
     for (const auto& chain : r["chains"]) {

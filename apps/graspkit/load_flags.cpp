@@ -56,6 +56,22 @@ LoadOptions LoadFlags::options() const {
     options.urdfLinkMaterials[pair.substr(0, equals)] =
         materialNamed("--link-material", pair.substr(equals + 1));
   }
+  for (const std::string& pair : closing) {
+    const auto equals = pair.find('=');
+    const std::string dof = pair.substr(0, equals),
+                      sign = equals == std::string::npos ? "" : pair.substr(equals + 1);
+    int index = -1;
+    try {
+      std::size_t used = 0;
+      index = std::stoi(dof, &used);
+      if (used != dof.size()) index = -1;
+    } catch (const std::exception&) {
+      index = -1;
+    }
+    if (index < 0 || (sign != "+" && sign != "-"))
+      throw Error(fmt::format("--close: '{}' is not DOF=+ or DOF=- (DOF a 0-based index)", pair));
+    options.closingDirections[index] = sign == "+" ? 1 : -1;
+  }
   return options;
 }
 
@@ -72,6 +88,11 @@ void addLoadFlags(CLI::App& command, LoadFlags& flags) {
                      "URDF: the link to take as the palm (default: the root)");
   command.add_option("--urdf-material", flags.material,
                      "URDF: every link's material, one of GraspIt!'s (default: rubber)");
+  command
+      .add_option("--close", flags.closing,
+                  "DOF=+|-: the way DOF (0-based) closes the hand, towards its upper (+) or lower "
+                  "(-) limit; overrides the file and the inferred direction (repeatable)")
+      ->allow_extra_args(false);
   command
       .add_option("--link-material", flags.linkMaterials,
                   "URDF: LINK=MATERIAL, one link's material (repeatable)")

@@ -19,6 +19,7 @@ struct LoadFlags {
   std::string palm;
   std::string material;                    // every URDF link's (empty: rubber)
   std::vector<std::string> linkMaterials;  // LINK=MATERIAL
+  std::vector<std::string> closing;        // DOF=+ or DOF=-
 
   // Throws graspkit::Error naming the option for an unknown material or a malformed pair.
   LoadOptions options() const;

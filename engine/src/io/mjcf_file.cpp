@@ -35,6 +35,7 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
+#include "graspkit/closing_direction.hpp"
 #include "graspkit/self_collision_setup.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
@@ -1127,6 +1128,8 @@ class MjcfReader {
     }
     robot->eigengrasps = identityEigengrasps(static_cast<int>(robot->dofs.size()));
     if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
+    if (options_.inferClosingDirections)
+      setClosingDirections(*robot, inferClosingDirections(*robot));
     return robot;
   }
 

@@ -1,5 +1,6 @@
 #include "graspkit/io/robot_file.hpp"
 
+#include "graspkit/closing_direction.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
 
@@ -525,14 +526,38 @@ class RobotReader {
 
 }  // namespace
 
+namespace {
+
+// LoadOptions::closingDirections on a loaded model (a copy: cached models are shared).
+std::shared_ptr<const RobotModel> withClosingOverrides(std::shared_ptr<const RobotModel> model,
+                                                       const LoadOptions& options,
+                                                       const fs::path& file) {
+  if (options.closingDirections.empty()) return model;
+  auto changed = std::make_shared<RobotModel>(*model);
+  std::vector<int> directions;
+  for (const Dof& dof : changed->dofs) directions.push_back(dof.defaultVelocity < 0.0 ? -1 : 1);
+  for (const auto& [dof, direction] : options.closingDirections) {
+    if (dof < 0 || dof >= static_cast<int>(directions.size()))
+      throw Error(SourceLocation{file.string()},
+                  fmt::format("a closing direction is given for DOF {}; the robot has {} DOFs", dof,
+                              directions.size()));
+    directions[static_cast<std::size_t>(dof)] = direction;
+  }
+  setClosingDirections(*changed, directions);
+  return changed;
+}
+
+}  // namespace
+
 std::shared_ptr<const RobotModel> loadRobotFile(const fs::path& file, const LoadOptions& options,
                                                 ModelCache* cache) {
-  if (isUrdfFile(file)) return loadUrdfFile(file, options);
-  if (isMjcfFile(file)) return loadMjcfFile(file, options);
+  if (isUrdfFile(file)) return withClosingOverrides(loadUrdfFile(file, options), options, file);
+  if (isMjcfFile(file)) return withClosingOverrides(loadMjcfFile(file, options), options, file);
   // Without a caller's cache, a local one still reads a link file used by several links once.
   ModelCache local;
   ModelCache* used = cache ? cache : &local;
-  return used->robot(file, [&]() { return RobotReader(file, options, used).read(); });
+  return withClosingOverrides(
+      used->robot(file, [&]() { return RobotReader(file, options, used).read(); }), options, file);
 }
 
 }  // namespace graspkit

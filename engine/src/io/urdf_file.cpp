@@ -20,6 +20,7 @@
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
+#include "graspkit/closing_direction.hpp"
 #include "graspkit/self_collision_setup.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
@@ -105,6 +106,8 @@ class UrdfReader {
     robot->eigengrasps = identityEigengrasps(static_cast<int>(robot->dofs.size()));
     readSrdf(*robot);
     if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
+    if (options_.inferClosingDirections)
+      setClosingDirections(*robot, inferClosingDirections(*robot));
     return robot;
   }
 

@@ -33,6 +33,12 @@ struct LoadOptions {
   // URDF and MJCF hands: switch off the link pairs that collide at rest and in most postures,
   // or always (graspkit/self_collision_setup.hpp). GraspIt!'s robot files never are.
   bool switchOffInherentCollisions = true;
+  // Closing directions that override the hand's (graspkit/closing_direction.hpp): DOF index ->
+  // +1 (closes towards the upper limit) or -1. Any robot file; an index past the DOFs is an error.
+  std::map<int, int> closingDirections;
+  // URDF and MJCF hands: infer each DOF's closing direction from the geometry (else every DOF
+  // closes towards its upper limit, as before).
+  bool inferClosingDirections = true;
   // URDF: an SRDF whose <disable_collisions> pairs are never checked. Empty: the .srdf beside
   // the URDF (same stem), when there is one.
   std::filesystem::path srdf;
