@@ -43,6 +43,7 @@ LoadOptions LoadFlags::options() const {
   options.genericRobotFallback = genericRobots;
   options.packagePaths = packagePaths;
   options.urdfPalm = palm;
+  options.srdf = srdf;
   auto materialNamed = [](const std::string& option, const std::string& name) {
     const auto m = materialFromName(name);
     if (!m) throw Error(fmt::format("{}: '{}' is not one of GraspIt!'s materials", option, name));
@@ -88,6 +89,9 @@ void addLoadFlags(CLI::App& command, LoadFlags& flags) {
                      "URDF: the link to take as the palm (default: the root)");
   command.add_option("--urdf-material", flags.material,
                      "URDF: every link's material, one of GraspIt!'s (default: rubber)");
+  command.add_option("--srdf", flags.srdf,
+                     "URDF: an SRDF whose <disable_collisions> pairs are never checked (default: "
+                     "the .srdf beside the URDF)");
   command
       .add_option("--close", flags.closing,
                   "DOF=+|-: the way DOF (0-based) closes the hand, towards its upper (+) or lower "

@@ -1,6 +1,6 @@
 #pragma once
-// The flags every command that loads files shares: --root, --generic-robots, and for URDF
-// robots --package-path, --palm, --urdf-material and --link-material.
+// The flags every command that loads files shares: --root, --generic-robots, --close, and for
+// URDF robots --package-path, --palm, --urdf-material, --link-material and --srdf.
 
 #include <filesystem>
 #include <string>
@@ -20,6 +20,7 @@ struct LoadFlags {
   std::string material;                    // every URDF link's (empty: rubber)
   std::vector<std::string> linkMaterials;  // LINK=MATERIAL
   std::vector<std::string> closing;        // DOF=+ or DOF=-
+  std::filesystem::path srdf;              // URDF: <disable_collisions> pairs
 
   // Throws graspkit::Error naming the option for an unknown material or a malformed pair.
   LoadOptions options() const;

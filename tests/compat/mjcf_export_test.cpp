@@ -12,6 +12,7 @@
 
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/urdf_file.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"
@@ -28,13 +29,16 @@ struct DataDeleter {
   void operator()(mjData* d) const { mj_deleteData(d); }
 };
 
-void expectMujocoAgrees(const std::string& file) {
+enum class Format { Mjcf, Urdf };
+
+void expectMujocoAgrees(const std::string& file, Format format = Format::Mjcf) {
   SCOPED_TRACE(file);
   const auto model = loadRobotFile(*test::graspitDataDir() / file);
-  const fs::path mjcf = saveMjcf(*model, test::scratchDir() / "mjcf");
+  // MuJoCo reads its own format, and URDF through its importer.
+  const fs::path mjcf = format == Format::Mjcf ? saveMjcf(*model, test::scratchDir() / "mjcf")
+                                               : saveUrdf(*model, test::scratchDir() / "urdf");
   char error[1000] = "";
-  std::unique_ptr<mjModel, ModelDeleter> m(
-      mj_loadXML(mjcf.c_str(), nullptr, error, sizeof(error)));
+  std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(mjcf.c_str(), nullptr, error, sizeof(error)));
   ASSERT_TRUE(m) << "MuJoCo: " << error;
   std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
   Robot robot(model);
@@ -80,6 +84,15 @@ TEST(MjcfExport, MujocoPlacesHumanHandUniversalLinksAsGraspkitDoes) {
   GRASPKIT_REQUIRE_SHARED();
   test::QuietWarnings quiet;
   expectMujocoAgrees("models/robots/HumanHand/HumanHand20DOF.xml");
+}
+
+// The URDF export loads in MuJoCo's URDF importer (its <mujoco><compiler meshdir> extension says
+// where the meshes are) and MuJoCo's kinematics agree with graspkit's there too.
+TEST(UrdfExport, MujocosUrdfImporterPlacesTheLinksAsGraspkitDoes) {
+  GRASPKIT_REQUIRE_SHARED();
+  test::QuietWarnings quiet;
+  expectMujocoAgrees("models/robots/Barrett/Barrett.xml", Format::Urdf);
+  expectMujocoAgrees("models/robots/HumanHand/HumanHand20DOF.xml", Format::Urdf);
 }
 
 }  // namespace

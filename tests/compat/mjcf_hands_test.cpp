@@ -19,12 +19,14 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "graspkit/collision.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "graspkit/world.hpp"
 #include "test_paths.hpp"
 
@@ -297,6 +299,37 @@ TEST(MenagerieHandSetup, FingersThatMeetAtRestStayChecked) {
         p.first.link.chain != p.second.link.chain)
       ++across_fingers;
   EXPECT_GT(across_fingers, 0) << "the fingers should meet at the zero posture";
+}
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// The names of the links a hand's setup puts virtual contacts on ("palm" for the palm).
+std::set<std::string> contactLinks(const RobotModel& model) {
+  std::set<std::string> out;
+  for (const VirtualContact& v : model.virtualContacts)
+    out.insert(v.finger < 0 ? "palm" : model.chains[v.finger].links[v.link].name);
+  return out;
+}
+
+// The planner's energy pulls virtual contacts to the object. On the Robotiq 2F-85 the DOF that
+// moves the fingertips (the followers, with the pads) also moves the inner bars (the drivers and
+// spring links), which end nearer the palm: only the palm and the followers get contacts. Each
+// of the Allegro's four fingers is a chain of its own: its fingertip gets one.
+TEST(MenagerieHandSetup, VirtualContactsSitOnThePalmAndTheFingertips) {
+  GRASPKIT_REQUIRE_SHARED();
+  const fs::path robotiq = *test::sharedDir() / "hands/menagerie/robotiq_2f85_v4/2f85.xml";
+  const fs::path allegro = *test::sharedDir() /
+                           "hands/dex-urdf/robots/hands/allegro_hand/variation/"
+                           "allegro_hand_right_fsr_simple.urdf";
+  if (!fs::exists(robotiq) || !fs::exists(allegro)) GTEST_SKIP() << "SKIPPED: hands not found";
+  EXPECT_EQ(contactLinks(*loadRobotFile(robotiq)),
+            (std::set<std::string>{"palm", "left_follower", "right_follower"}));
+  EXPECT_EQ(contactLinks(*loadRobotFile(allegro)),
+            (std::set<std::string>{"palm", "link_3.0", "link_7.0", "link_11.0", "link_15.0"}));
 }
 
 }  // namespace

@@ -35,4 +35,12 @@ class Robot;
 // virtual-contact file.
 std::vector<VirtualContact> deriveVirtualContacts(const Robot& robot);
 
+// The virtual contacts a URDF or MJCF hand's setup keeps (docs/hands.md): of the derived ones,
+// the palm's and each finger's last link's, where a finger is a chain whose tip reaches, with
+// the DOFs at mid-range, at least 90 % as far from the palm as the farthest tip of every DOF that
+// drives it. So a linkage's inner bars (a Robotiq's drivers, moved by the same DOF as its
+// fingertips but ending nearer the palm) draw no contact, and the planner's energy pulls the
+// object to the pads.
+std::vector<VirtualContact> deriveFingertipContacts(const Robot& robot);
+
 }  // namespace graspkit

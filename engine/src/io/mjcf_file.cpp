@@ -29,14 +29,15 @@
 #include <set>
 
 #include "geometry/primitive_meshes.hpp"
+#include "graspkit/closing_direction.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
-#include "graspkit/closing_direction.hpp"
 #include "graspkit/self_collision_setup.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
@@ -1130,6 +1131,8 @@ class MjcfReader {
     if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
     if (options_.inferClosingDirections)
       setClosingDirections(*robot, inferClosingDirections(*robot));
+    // The hand setup's virtual contacts: the palm's and the fingertips' (virtual_contact.hpp).
+    robot->virtualContacts = deriveFingertipContacts(Robot(robot));
     return robot;
   }
 

@@ -3,6 +3,7 @@
 #include "graspkit/closing_direction.hpp"
 #include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/urdf_file.hpp"
+#include "graspkit/virtual_contact.hpp"
 
 #include <algorithm>
 #include <array>
@@ -544,6 +545,9 @@ std::shared_ptr<const RobotModel> withClosingOverrides(std::shared_ptr<const Rob
     directions[static_cast<std::size_t>(dof)] = direction;
   }
   setClosingDirections(*changed, directions);
+  // A URDF or MJCF hand's derived fingertip contacts face the way the fingers close.
+  if (changed->virtualContactFile.empty() && !changed->virtualContacts.empty())
+    changed->virtualContacts = deriveFingertipContacts(Robot(changed));
   return changed;
 }
 

@@ -66,6 +66,12 @@ class UrdfWriter {
     text << fmt::format("<!-- written by graspkit from {} -->\n",
                         io::xmlCommentText(robot_.file.filename().string()));
     text << fmt::format("<robot name=\"{}\">\n", io::xmlEscaped(robot_.name));
+    // MuJoCo's URDF importer keeps only a mesh path's file name: its compiler extension says
+    // where the meshes are (urdfdom ignores the element). Links stay bodies of their own, and
+    // the empty frame links on the joint axes get MuJoCo's least mass (a milligram).
+    text << "  <mujoco><compiler meshdir=\"meshes\" fusestatic=\"false\" "
+            "discardvisual=\"false\" balanceinertia=\"true\" boundmass=\"1e-6\" "
+            "boundinertia=\"1e-12\"/></mujoco>\n";
     text << links_.str();
     // DOF order is the order of the joints that mimic nothing: each DOF's first joint first.
     for (const std::string& joint : masters_) text << joint;

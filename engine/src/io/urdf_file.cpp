@@ -14,14 +14,15 @@
 #include <sstream>
 
 #include "geometry/primitive_meshes.hpp"
+#include "graspkit/closing_direction.hpp"
 #include "graspkit/error.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
 #include "graspkit/mesh_loader.hpp"
 #include "graspkit/registry.hpp"
-#include "graspkit/closing_direction.hpp"
 #include "graspkit/self_collision_setup.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
@@ -108,6 +109,8 @@ class UrdfReader {
     if (options_.switchOffInherentCollisions) disableInherentSelfCollisions(*robot);
     if (options_.inferClosingDirections)
       setClosingDirections(*robot, inferClosingDirections(*robot));
+    // The hand setup's virtual contacts: the palm's and the fingertips' (virtual_contact.hpp).
+    robot->virtualContacts = deriveFingertipContacts(Robot(robot));
     return robot;
   }
 

@@ -1,5 +1,6 @@
 #include "graspkit/virtual_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -114,6 +115,45 @@ std::vector<VirtualContact> deriveVirtualContacts(const Robot& robot) {
     }
   }
   return contacts;
+}
+
+std::vector<VirtualContact> deriveFingertipContacts(const Robot& robot) {
+  const RobotModel& model = robot.model();
+  const std::vector<VirtualContact> all = deriveVirtualContacts(robot);
+  Robot middle = robot;
+  std::vector<double> values;
+  for (const Dof& dof : model.dofs) values.push_back(0.5 * (dof.min + dof.max));
+  middle.setDofValues(values, LimitPolicy::Ignore);
+  const Vector3 palm = middle.pose().translation();
+  // Each chain's reach: its last link's contact (else its last link's origin) from the palm.
+  const int chains = static_cast<int>(model.chains.size());
+  std::vector<double> reach(static_cast<std::size_t>(chains), 0.0);
+  for (int c = 0; c < chains; ++c) {
+    const int last = static_cast<int>(model.chains[c].links.size()) - 1;
+    if (last < 0) continue;
+    Vector3 tip = middle.linkPose(c, last).translation();
+    for (const VirtualContact& v : all)
+      if (v.finger == c && v.link == last) tip = middle.linkPose(c, last) * v.location;
+    reach[c] = (tip - palm).norm();
+  }
+  std::vector<double> farthest(model.dofs.size(), 0.0);  // per DOF, over the chains it drives
+  for (int c = 0; c < chains; ++c)
+    for (const Joint& joint : model.chains[c].joints)
+      farthest[joint.dof] = std::max(farthest[joint.dof], reach[c]);
+  std::vector<VirtualContact> kept;
+  for (const VirtualContact& v : all) {
+    if (v.finger < 0) {
+      kept.push_back(v);
+      continue;
+    }
+    const KinematicChain& chain = model.chains[v.finger];
+    if (v.link != static_cast<int>(chain.links.size()) - 1) continue;
+    bool finger = true;
+    for (const Joint& joint : chain.joints)
+      if (reach[v.finger] < 0.9 * farthest[joint.dof]) finger = false;
+    if (finger) kept.push_back(v);
+  }
+  return kept;
 }
 
 }  // namespace graspkit
