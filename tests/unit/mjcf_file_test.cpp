@@ -267,3 +267,41 @@ TEST(MjcfFile, BadFilesNameFileLineAndElement) {
 
 }  // namespace
 }  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// The same palm arch in MJCF: a body with a hinge carrying two finger bodies. No actuators, so
+// each joint is a DOF; the arch's joint is repeated in both fingers' chains.
+TEST(MjcfFile, ABodyCarryingTwoFingersMovesBoth) {
+  const auto model = loadMjcfFile(writeFile("arch.xml", R"(<mujoco model="arch">
+  <compiler angle="radian"/>
+  <default><geom type="box" size="0.005 0.005 0.02"/><joint axis="0 1 0" range="0 1.5"/></default>
+  <worldbody>
+    <body name="palm"><geom size="0.04 0.02 0.01"/>
+      <body name="arch" pos="-0.02 0 0.02">
+        <joint name="arch" axis="0 0 1" range="-0.5 0.5"/><geom size="0.015 0.005 0.005"/>
+        <body name="ring" pos="0.01 0 0.03"><joint name="ring"/><geom/></body>
+        <body name="little" pos="-0.01 0 0.03"><joint name="little"/><geom/></body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)"));
+  ASSERT_EQ(model->dofs.size(), 3u);
+  ASSERT_EQ(model->chains.size(), 2u);
+  ASSERT_EQ(model->chains[0].links.size(), 2u);  // arch, ring
+  ASSERT_EQ(model->chains[1].links.size(), 1u);  // little (the arch's joint taken along)
+  Robot robot(model);
+  for (const auto& q : {std::vector<double>{0.4, 0.2, 1.1}, std::vector<double>{-0.45, 1.3, 0.1}}) {
+    robot.setDofValues(q);
+    const Transform arch = translation(-20, 0, 20) * rotation(Vector3::UnitZ(), q[0]);
+    expectPose(robot.linkPose(0, 0), arch);
+    expectPose(robot.linkPose(0, 1),
+               arch * translation(10, 0, 30) * rotation(Vector3::UnitY(), q[1]));
+    expectPose(robot.linkPose(1, 0),
+               arch * translation(-10, 0, 30) * rotation(Vector3::UnitY(), q[2]));
+  }
+}
+
+}  // namespace
+}  // namespace graspkit

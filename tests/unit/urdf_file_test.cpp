@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -449,6 +450,58 @@ TEST(UrdfFile, AMimicJointsOwnLimitsNeverCollapseItsDof) {
   Robot robot(model);
   robot.setDofValues(std::vector<double>{0.548});
   expectPose(robot.linkPose(1, 0), origin({0.03, 0, 0}) * rotation(Vector3::UnitY(), -0.548));
+}
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// A palm arch (a joint about z) carrying two fingers, as some hands' ring and little fingers
+// hang: a tree below a moving joint. Each path from the palm is a chain; the arch's joint is in
+// both, driven by its one DOF, and the arch link belongs to the first. Every link stays where
+// URDF's composition puts it.
+TEST(UrdfFile, AJointCarryingTwoFingersMovesBoth) {
+  const std::string text = R"(<?xml version="1.0"?>
+<robot name="arch">
+  <link name="palm"><collision><geometry><box size="0.08 0.04 0.02"/></geometry></collision></link>
+  <link name="index"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <link name="arch"><collision><geometry><box size="0.03 0.01 0.01"/></geometry></collision></link>
+  <link name="ring"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <link name="little"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <joint name="index" type="revolute"><parent link="palm"/><child link="index"/>
+    <origin xyz="0.03 0 0.05"/><axis xyz="0 1 0"/><limit lower="0" upper="1.5" effort="1" velocity="1"/></joint>
+  <joint name="arch" type="revolute"><parent link="palm"/><child link="arch"/>
+    <origin xyz="-0.02 0 0.02"/><axis xyz="0 0 1"/><limit lower="-0.5" upper="0.5" effort="1" velocity="1"/></joint>
+  <joint name="ring" type="revolute"><parent link="arch"/><child link="ring"/>
+    <origin xyz="0.01 0 0.03"/><axis xyz="0 1 0"/><limit lower="0" upper="1.5" effort="1" velocity="1"/></joint>
+  <joint name="little" type="revolute"><parent link="arch"/><child link="little"/>
+    <origin xyz="-0.01 0 0.03"/><axis xyz="0 1 0"/><limit lower="0" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>
+)";
+  const auto model = loadUrdfFile(writeFile("arch.urdf", text));
+  ASSERT_EQ(model->dofs.size(), 4u);  // index, arch, ring, little
+  ASSERT_EQ(model->chains.size(), 3u);
+  std::map<std::string, LinkRef> links;
+  for (std::size_t c = 0; c < model->chains.size(); ++c)
+    for (std::size_t l = 0; l < model->chains[c].links.size(); ++l)
+      links[model->chains[c].links[l].name] = {static_cast<int>(c), static_cast<int>(l)};
+  ASSERT_EQ(links.size(), 4u);                  // each link once: index, arch, ring, little
+  EXPECT_EQ(model->dofs[1].joints.size(), 2u);  // the arch joint, in two chains
+  Robot robot(model);
+  for (const auto& q :
+       {std::vector<double>{0.3, 0.4, 0.2, 1.1}, std::vector<double>{1.0, -0.45, 1.3, 0.1}}) {
+    robot.setDofValues(q);
+    const Transform arch = origin({-0.02, 0, 0.02}) * rotation(Vector3::UnitZ(), q[1]);
+    expectPose(robot.linkPose(links.at("index")),
+               origin({0.03, 0, 0.05}) * rotation(Vector3::UnitY(), q[0]));
+    expectPose(robot.linkPose(links.at("arch")), arch);
+    expectPose(robot.linkPose(links.at("ring")),
+               arch * origin({0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[2]));
+    expectPose(robot.linkPose(links.at("little")),
+               arch * origin({-0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[3]));
+  }
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -59,9 +60,10 @@ constexpr double kRevoluteKp = 1.0e11, kRevoluteKd = 1.0e7, kRevoluteEffort = 2.
 constexpr double kPrismaticKp = 1.0e9, kPrismaticKd = 1.0e6, kPrismaticEffort = 1.0e8;
 constexpr int kMaxIncludeDepth = 16;
 constexpr std::size_t kMaxBodies = 4096;
-constexpr double kLoopSamples = 40;           // DOF samples a loop is solved at
-constexpr double kLoopWarnGap = 0.5;          // mm: a fitted loop opening more than this warns
-constexpr double kLoopSolveTolerance = 1e-6;  // mm
+constexpr std::size_t kMaxChainJoints = 4096;  // shared joints repeated
+constexpr double kLoopSamples = 40;            // DOF samples a loop is solved at
+constexpr double kLoopWarnGap = 0.5;           // mm: a fitted loop opening more than this warns
+constexpr double kLoopSolveTolerance = 1e-6;   // mm
 
 // An element and the file it was read from (an <include>d file has its own lines).
 struct Source {
@@ -1111,7 +1113,8 @@ class MjcfReader {
       for (const int child : bodies_[member].children)
         if (moves(child)) firsts.emplace_back(child, frame);
     for (const auto& [first, parent_frame] : firsts)
-      readChain(first, parent_frame, *robot, link_of);
+      for (const std::vector<int>& path : pathsFrom(first))  // a branching tree: one per leaf
+        readChain(path, parent_frame, *robot, link_of);
     if (robot->chains.empty())
       throw Error(xml::at(file_, *bodies_.front().source.element),
                   "no driven joint below the hand's fixed bodies: nothing moves");
@@ -1136,29 +1139,48 @@ class MjcfReader {
     return robot;
   }
 
-  void readChain(int first, const Transform& parent_frame, RobotModel& robot,
+  // Every path of moving bodies from `first` down to a leaf. A finger tree that branches below
+  // a moving joint gives one chain per path; a shared body's joints are repeated in each chain,
+  // driven by their DOFs, and the body's link belongs to the first chain.
+  std::vector<std::vector<int>> pathsFrom(int first) const {
+    std::vector<std::vector<int>> out;
+    std::vector<int> path;
+    std::size_t joints = 0;
+    std::function<void(int)> walk = [&](int b) {
+      path.push_back(b);
+      const std::vector<int> next = movingChildren(b);
+      if (next.empty()) {
+        for (const int p : path) joints += bodies_[p].joints.size();
+        if (joints > kMaxChainJoints)
+          throw Error(bodies_[first].source.where(),
+                      fmt::format("the tree below body '{}' repeats its shared joints into more "
+                                  "than {} chain joints",
+                                  bodies_[first].name, kMaxChainJoints));
+        out.push_back(path);
+      }
+      for (const int n : next) walk(n);
+      path.pop_back();
+    };
+    walk(first);
+    return out;
+  }
+
+  void readChain(const std::vector<int>& path, const Transform& parent_frame, RobotModel& robot,
                  std::map<int, LinkRef>& link_of) {
     // The chain's moving bodies, each with its frame (palm frame, every joint at reference).
-    std::vector<int> chain_bodies;
+    const std::vector<int>& chain_bodies = path;
     std::vector<Transform> frames;
     Transform parent = parent_frame;
-    for (int b = first; b >= 0;) {
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const int b = path[i];
       const Transform at = parent * bodies_[b].local;
-      chain_bodies.push_back(b);
       frames.push_back(at);
-      const std::vector<int> next = movingChildren(b);
-      if (next.size() > 1)
-        throw Error(bodies_[b].source.where(),
-                    fmt::format("the hand branches below body '{}' (bodies '{}' and '{}' move "
-                                "on it); graspkit's chains do not branch yet",
-                                bodies_[b].name, bodies_[next[0]].name, bodies_[next[1]].name));
-      if (next.empty()) break;
+      if (i + 1 == path.size()) break;
       // The next moving body hangs on a member of b's rigid group.
       Transform member = Transform::Identity();
-      for (int up = bodies_[next[0]].parent; up != b; up = bodies_[up].parent)
+      for (int up = bodies_[path[i + 1]].parent; up != b; up = bodies_[up].parent)
         member = fixedLocal(up) * member;
       parent = at * member;
-      b = next[0];
     }
     // Joint axes (palm frame) in chain order.
     struct AxisJoint {
@@ -1184,9 +1206,9 @@ class MjcfReader {
     before.translation() = axes[0].point;
     chain.base = before;
     std::size_t next_axis = 0;
+    int consumed = 0;  // joints since the last link
     for (std::size_t i = 0; i < chain_bodies.size(); ++i) {
       const MjBody& body = bodies_[chain_bodies[i]];
-      int consumed = 0;
       Transform after = before;
       for (const int j : body.joints) {
         if (drives_[j].dof < 0) continue;
@@ -1217,7 +1239,8 @@ class MjcfReader {
         ++consumed;
       }
       // The link: this body's rigid group, at the body's MJCF frame (all joints at reference).
-      if (consumed == 0) continue;  // cannot happen: every chain body moves
+      // A body an earlier chain of the same tree holds: the next link takes its joints too.
+      if (consumed == 0 || link_of.count(chain_bodies[i])) continue;
       Link link;
       link.name = body.name;
       link.file = body.name;
@@ -1234,6 +1257,7 @@ class MjcfReader {
                         static_cast<int>(chain.links.size())};
       for (const auto& [member, frame] : group) link_of[member] = ref;
       chain.links.push_back(std::move(link));
+      consumed = 0;
     }
     robot.chains.push_back(std::move(chain));
   }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -34,7 +35,9 @@ using tinyxml2::XMLElement;
 
 namespace {
 
-constexpr double kMetre = 1000.0;     // mm
+constexpr double kMetre = 1000.0;  // mm
+// The most joints a hand's chains may hold, shared joints repeated (the robot limit).
+constexpr std::size_t kMaxChainJoints = 4096;
 constexpr double kKilogram = 1000.0;  // g
 // Torques in g mm^2/s^2 per N m, forces in g mm/s^2 per N.
 constexpr double kNewtonMetre = 1.0e9;
@@ -99,7 +102,11 @@ class UrdfReader {
     std::stable_sort(firsts.begin(), firsts.end(), [&](const auto& a, const auto& b) {
       return link_order_.at(a->child_link_name) < link_order_.at(b->child_link_name);
     });
-    for (const urdf::JointSharedPtr& joint : firsts) readChain(*joint, *robot);
+    // A finger tree that branches below a moving joint (a palm arch carrying two fingers) gives
+    // one chain per path from the palm to a leaf; a joint on several paths is repeated in each,
+    // driven by its DOF, and its link belongs to the first chain.
+    for (const urdf::JointSharedPtr& joint : firsts)
+      for (const std::vector<const urdf::Joint*>& path : pathsFrom(*joint)) readChain(path, *robot);
     if (robot->chains.empty())
       throw Error(xml::at(file_, *link_elements_.at(palm)),
                   fmt::format("no movable joint hangs on the palm '{}'", palm));
@@ -386,7 +393,31 @@ class UrdfReader {
             j.mimic->multiplier * target.offset + j.mimic->offset};
   }
 
-  void readChain(const urdf::Joint& first, RobotModel& robot) {
+  // Every path of movable joints from `first` down to a leaf, in file order.
+  std::vector<std::vector<const urdf::Joint*>> pathsFrom(const urdf::Joint& first) const {
+    std::vector<std::vector<const urdf::Joint*>> out;
+    std::vector<const urdf::Joint*> path;
+    std::size_t joints = 0;
+    std::function<void(const urdf::Joint*)> walk = [&](const urdf::Joint* j) {
+      path.push_back(j);
+      const std::vector<urdf::JointSharedPtr> next = childJoints(j->child_link_name, false);
+      if (next.empty()) {
+        joints += path.size();
+        if (joints > kMaxChainJoints)
+          throw Error(xml::at(file_, *joint_elements_.at(first.name)),
+                      fmt::format("the tree below joint '{}' repeats its shared joints into more "
+                                  "than {} chain joints",
+                                  first.name, kMaxChainJoints));
+        out.push_back(path);
+      }
+      for (const urdf::JointSharedPtr& n : next) walk(n.get());
+      path.pop_back();
+    };
+    walk(&first);
+    return out;
+  }
+
+  void readChain(const std::vector<const urdf::Joint*>& path, RobotModel& robot) {
     // The chain's joints, each with its parent link's frame at the zero joint vector (palm
     // frame) and its child link's.
     std::vector<const urdf::Joint*> joints;
@@ -394,7 +425,7 @@ class UrdfReader {
     std::vector<Vector3> points, axes;
     Transform group_frame = Transform::Identity();  // the palm's, then each link group's
     std::string group = robot.palmFile;
-    for (const urdf::Joint* j = &first; j;) {
+    for (const urdf::Joint* j : path) {
       const Transform parent = group_frame * memberFrame(group, j->parent_link_name);
       const Transform at_joint = parent * poseTransform(j->parent_to_joint_origin_transform);
       joints.push_back(j);
@@ -403,14 +434,6 @@ class UrdfReader {
       axes.push_back((at_joint.linear() * vector(j->axis)).normalized());
       group = j->child_link_name;
       group_frame = at_joint;
-      const std::vector<urdf::JointSharedPtr> next = childJoints(group, false);
-      if (next.size() > 1)
-        throw Error(xml::at(file_, *link_elements_.at(group)),
-                    fmt::format("the robot branches below the palm at link '{}' (joints '{}' and "
-                                "'{}'); graspkit's chains do not branch: take that link as the "
-                                "palm (--palm {})",
-                                group, next[0]->name, next[1]->name, group));
-      j = next.empty() ? nullptr : next.front().get();
     }
 
     KinematicChain chain;
@@ -457,7 +480,9 @@ class UrdfReader {
       // transform from it (both turn with the joint).
       ++consumed;
       const std::string carrier = carrierLink(j.child_link_name);
-      if (carrier.empty()) continue;  // an empty frame: the next link takes this joint too
+      // An empty frame, or a link an earlier chain of the same tree holds (a shared joint's):
+      // the next link takes this joint too.
+      if (carrier.empty() || !placed_.insert(carrier).second) continue;
       const Transform carrier_frame = memberFrame(j.child_link_name, carrier);
       Link link;
       link.name = carrier;
@@ -735,8 +760,10 @@ class UrdfReader {
   urdf::ModelInterfaceSharedPtr model_;
   std::map<std::string, int> dof_of_;
   std::map<int, std::string> mimics_;
-  std::map<std::string, LinkRef> link_ref_;  // URDF link -> the graspkit link it is part of  //
-                                             // robot-wide joint index -> name, for mimic joints
+  std::map<std::string, LinkRef> link_ref_;
+  std::set<std::string>
+      placed_;  // links already given to a chain  // URDF link -> the graspkit link it is part of
+                // // robot-wide joint index -> name, for mimic joints
 };
 
 }  // namespace

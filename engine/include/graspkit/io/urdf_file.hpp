@@ -4,8 +4,9 @@
 // - The palm is LoadOptions::urdfPalm, else the URDF's root link. Links hung on it by fixed
 //   joints are part of it; each movable joint hung on it starts a chain (chains in the order
 //   of their first links in the file), which follows the movable joints below (links on fixed
-//   joints join the link before). A chain that branches below the palm is an error naming the
-//   link: pick that link as the palm.
+//   joints join the link before). Where the tree branches below a moving joint, each path from
+//   the palm to a leaf is a chain; a shared joint is repeated in each (driven by its DOF) and its
+//   link belongs to the first.
 // - Revolute, continuous (a range of +-pi) and prismatic joints become DH joints: each chain's
 //   joint axes are turned into Denavit-Hartenberg frames at the zero joint vector, and each
 //   link keeps its URDF frame as a constant Link::frame on its DH frame, so link poses are the
