@@ -39,9 +39,9 @@ Transform parsePose(const std::string& text) {
   if (v.size() != 7) {
     throw Error(fmt::format("--pose: expected tx,ty,tz,qw,qx,qy,qz (7 numbers), got {}", v.size()));
   }
-  const Quaternion q(v[3], v[4], v[5], v[6]);
-  if (q.norm() < 1e-9) throw Error("--pose: the quaternion is zero");
-  return makeTransform(Vector3(v[0], v[1], v[2]), q.normalized());
+  const std::optional<Quaternion> q = unitQuaternion(v[3], v[4], v[5], v[6]);
+  if (!q) throw Error("--pose: the quaternion is zero or not finite: it names no rotation");
+  return makeTransform(Vector3(v[0], v[1], v[2]), *q);
 }
 
 WrenchSpaceType parseGws(const std::string& text) {

@@ -41,7 +41,11 @@ Transform poseFrom(const json& pose) {
   const auto t = pose.at("translation").get<std::vector<double>>();
   const auto q = pose.at("quaternion").get<std::vector<double>>();
   if (t.size() != 3 || q.size() != 4) throw Error("a pose needs 3 + 4 numbers");
-  return makeTransform(Vector3(t[0], t[1], t[2]), Quaternion(q[0], q[1], q[2], q[3]).normalized());
+  const Vector3 translation(t[0], t[1], t[2]);
+  if (!translation.allFinite()) throw Error("a pose's translation is not finite");
+  const std::optional<Quaternion> rotation = unitQuaternion(q[0], q[1], q[2], q[3]);
+  if (!rotation) throw Error("a pose's quaternion is zero or not finite: it names no rotation");
+  return makeTransform(translation, *rotation);
 }
 
 // A plan without world files: its world, with the hand moved to each grasp's closed posture.
@@ -68,6 +72,9 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   const json& grasps = member(plan, "grasps", file);
   if (!grasps.is_array()) throw Error(SourceLocation{file.string(), 0, "grasps"}, "not a list");
   const int count = static_cast<int>(grasps.size());
+  if (count == 0)
+    throw Error(SourceLocation{file.string(), 0, "grasps"},
+                "the plan holds no grasps: nothing to show");
   if (source.grasp > count || source.grasp < 0)
     throw Error(fmt::format("--grasp {}: the plan {} has {} grasps (1 to {})", source.grasp,
                             file.string(), count, count));

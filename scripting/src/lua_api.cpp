@@ -198,11 +198,12 @@ Transform toPose(lua_State* L, int arg) {
   lua_pop(L, 1);
   if (rawField(L, arg, "quaternion") != LUA_TNIL) {
     const Eigen::Vector4d q = toFixedList<4>(L, lua_gettop(L), "quaternion {w, x, y, z}");
-    if (q.norm() < 1e-9) {
+    const std::optional<Quaternion> unit = unitQuaternion(q[0], q[1], q[2], q[3]);
+    if (!unit) {
       lua_pop(L, 1);
-      throw ArgumentError(L, arg, "the quaternion is zero");
+      throw ArgumentError(L, arg, "the quaternion is zero or not finite: it names no rotation");
     }
-    rotation = Quaternion(q[0], q[1], q[2], q[3]).normalized();
+    rotation = *unit;
   }
   lua_pop(L, 1);
   return makeTransform(translation, rotation);

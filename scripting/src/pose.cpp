@@ -17,8 +17,10 @@ int pose(lua_State* L) {
   if (!isNone(L, 2)) {
     const std::vector<double> q = toNumberList(L, 2);
     if (q.size() != 4) throw ArgumentError(L, 2, "quaternion {w, x, y, z} expected");
-    rotation = Quaternion(q[0], q[1], q[2], q[3]);
-    if (rotation.norm() < 1e-9) throw ArgumentError(L, 2, "the quaternion is zero");
+    const std::optional<Quaternion> unit = unitQuaternion(q[0], q[1], q[2], q[3]);
+    if (!unit)
+      throw ArgumentError(L, 2, "the quaternion is zero or not finite: it names no rotation");
+    rotation = *unit;
     rotation.normalize();
   }
   pushPose(L, makeTransform(translation, rotation));

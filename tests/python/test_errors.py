@@ -79,6 +79,9 @@ def test_bad_values_raise_value_errors(graspit_data):
         world.body("mug").pose = np.full((4, 4), np.nan)
     with pytest.raises(ValueError, match="quaternion is zero"):
         graspkit.pose((0, 0, 0), (0, 0, 0, 0))
+    # Huge components name their rotation (a quarter turn about x), not the identity.
+    turned = graspkit.pose((0, 0, 0), (1e300, 1e300, 0, 0))
+    assert abs(turned[1][2] + 1.0) < 1e-12 and abs(turned[2][1] - 1.0) < 1e-12
     with pytest.raises(ValueError, match="frame"):
         world.body("mug").vertices("camera")
     with pytest.raises(ValueError, match="limits"):

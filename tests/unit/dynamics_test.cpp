@@ -383,6 +383,31 @@ TEST(Dynamics, RefusesANonPositiveMass) {
   }
 }
 
+// Masses and inertias that would make the contact problem singular are refused before Siconos
+// sees them (it aborts the process on some): a 1e-300 g cube resting on the floor, and an
+// indefinite inertia whose determinant is positive (moments -1, -1, 1).
+TEST(Dynamics, RefusesMassesAndInertiasThatWouldAbortTheSolver) {
+  for (int variant = 0; variant < 2; ++variant) {
+    SCOPED_TRACE(variant);
+    World world;
+    world.addBody(floorSlab());
+    Body body = cube(variant == 0 ? 1e-300 : 300.0);
+    if (variant == 1) {
+      auto model = std::make_shared<BodyModel>(*body.model);
+      model->inertia = Vector3(-1.0, -1.0, 1.0).asDiagonal();
+      body.model = model;
+    }
+    body.setPose(translation(0, 0, 25));
+    world.addBody(std::move(body));
+    try {
+      simulate(world, {});
+      FAIL() << "stepped";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("cube"), std::string::npos) << error.what();
+    }
+  }
+}
+
 TEST(Dynamics, NanVelocityStopsWithTheState) {
   World world;
   Body body = cube();

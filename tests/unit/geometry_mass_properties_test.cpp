@@ -275,8 +275,7 @@ TEST(MassProperties, InsideOutBoxGivesTheBoxsInertia) {
   const MassProperties props = computeMassProperties(box);
   ASSERT_TRUE(props.valid);
   EXPECT_NEAR(props.volume, -1000, 1e-9);
-  EXPECT_TRUE(props.inertia.isApprox(Matrix3::Identity() * (200.0 / 12.0), 1e-12))
-      << props.inertia;
+  EXPECT_TRUE(props.inertia.isApprox(Matrix3::Identity() * (200.0 / 12.0), 1e-12)) << props.inertia;
 }
 
 // A zero-area triangle has no normal: GraspIt!'s integrals turn NaN and it falls back.

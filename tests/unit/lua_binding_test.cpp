@@ -115,6 +115,12 @@ TEST_F(LuaBinding, QuaternionsAreNormalisedAndBadPosesRefused) {
   EXPECT_NEAR(number("result = graspkit.pose(nil, {2, 0, 0, 0}).quaternion[1]"), 1.0, 0.0);
   EXPECT_NE(error("graspkit.pose(nil, {0, 0, 0, 0})").find("the quaternion is zero"),
             std::string::npos);
+  // Huge components still name their rotation (a half turn about x here), never the identity;
+  // infinite ones name none.
+  EXPECT_NEAR(number("result = graspkit.pose(nil, {0, 1e308, 0, 0}).quaternion[2]"), 1.0, 1e-15);
+  EXPECT_NEAR(number("result = graspkit.pose(nil, {1e300, 1e300, 0, 0}).quaternion[1]"),
+              std::sqrt(0.5), 1e-15);
+  EXPECT_NE(error("graspkit.pose(nil, {1, math.huge, 0, 0})").find("finite"), std::string::npos);
   const std::string unknown =
       error("graspkit.new_world():add_obstacle('objects/box.xml', {position = {1, 2, 3}})");
   EXPECT_NE(unknown.find("only the keys 'translation' and 'quaternion'"), std::string::npos)

@@ -330,7 +330,7 @@ TEST_F(LuaPlanner, DefaultRobotIsTheFirstHand) {
       "local w = graspkit.load_world('" + glass +
           "')\n"
           "assert(w:robot(1):name() == 'Puma560', w:robot(1):name())\n"
-              "local seen\n"
+          "local seen\n"
           "local q = graspkit.planner('simann', {world = w, energy = function(state)\n"
           "  seen = state.robot:name(); return 0 end})\n"
           "q:step(1)\n"

@@ -8,6 +8,7 @@
 
 #include "graspkit/io/urdf_file.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -501,6 +502,43 @@ TEST(UrdfFile, AJointCarryingTwoFingersMovesBoth) {
                arch * origin({0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[2]));
     expectPose(robot.linkPose(links.at("little")),
                arch * origin({-0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[3]));
+  }
+}
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// A URDF is bounded as GraspIt!'s robot files are (1024 DOFs, 4096 joints and links), and the
+// bound is met before anything quadratic runs: a 5,000-link chain is refused at its 4,097th link.
+std::string longChain(int links, bool movable) {
+  std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"long\">\n";
+  for (int i = 0; i < links; ++i) text += fmt::format("<link name=\"l{}\"/>\n", i);
+  for (int i = 1; i < links; ++i) {
+    text += fmt::format(
+        "<joint name=\"j{}\" type=\"{}\"><parent link=\"l{}\"/><child link=\"l{}\"/>"
+        "<origin xyz=\"0 0 0.001\"/><axis xyz=\"0 1 0\"/>"
+        "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n",
+        i, movable ? "revolute" : "fixed", i - 1, i);
+  }
+  return text + "</robot>\n";
+}
+
+TEST(UrdfFile, RobotsPastTheLimitsAreRefusedNamingTheElement) {
+  try {
+    loadUrdfFile(writeFile("too_many_links.urdf", longChain(5000, false)));
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 4096 links"), std::string::npos) << e.what();
+    EXPECT_GT(e.where().line, 4000);
+  }
+  try {
+    loadUrdfFile(writeFile("too_many_dofs.urdf", longChain(1100, true)));
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1024 DOFs"), std::string::npos) << e.what();
   }
 }
 

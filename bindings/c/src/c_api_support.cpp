@@ -67,11 +67,11 @@ void copyString(std::string_view text, char* buffer, std::size_t capacity, std::
 
 Transform toTransform(const graspkit_pose& pose) {
   const Vector3 t(pose.translation[0], pose.translation[1], pose.translation[2]);
-  const Quaternion q(pose.rotation[0], pose.rotation[1], pose.rotation[2], pose.rotation[3]);
-  if (!t.allFinite() || !q.coeffs().allFinite())
-    throw Error("the pose has a value that is not a finite number");
-  if (q.norm() < 1e-9) throw Error("the pose's quaternion is zero");
-  return makeTransform(t, q.normalized());
+  if (!t.allFinite()) throw Error("the pose has a value that is not a finite number");
+  const std::optional<Quaternion> q =
+      unitQuaternion(pose.rotation[0], pose.rotation[1], pose.rotation[2], pose.rotation[3]);
+  if (!q) throw Error("the pose's quaternion is zero or not finite: it names no rotation");
+  return makeTransform(t, *q);
 }
 
 graspkit_pose toPose(const Transform& transform) {

@@ -37,9 +37,10 @@ Transform toTransform(const py::handle& pose) {
     const auto parts = pose.cast<py::tuple>();
     const Vector3 t = toVector3(parts[0], "pose translation");
     const std::vector<double> q = toVector(parts[1], 4, "pose quaternion (w, x, y, z)");
-    Quaternion rotation(q[0], q[1], q[2], q[3]);
-    if (rotation.norm() < 1e-12) throw py::value_error("pose quaternion is zero");
-    return makeTransform(t, rotation.normalized());
+    const std::optional<Quaternion> rotation = unitQuaternion(q[0], q[1], q[2], q[3]);
+    if (!rotation)
+      throw py::value_error("pose quaternion is zero or not finite: it names no rotation");
+    return makeTransform(t, *rotation);
   }
   return fromMatrix(py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pose));
 }

@@ -2,6 +2,8 @@
 // Rigid transforms. Column-vector convention as in GraspIt!: p_parent = R * p_child + t.
 // Lengths in mm, angles in radians.
 
+#include <optional>
+
 #include <Eigen/Geometry>
 
 namespace graspkit {
@@ -13,6 +15,11 @@ using Quaternion = Eigen::Quaterniond;
 
 // A transform from a translation (mm) and a w-first unit quaternion.
 Transform makeTransform(const Vector3& translation, const Quaternion& rotation);
+
+// The unit quaternion of (w, x, y, z), scaled by its largest component before it is normalised
+// so that (1e300, 1e300, 0, 0) and (1e-300, 0, 0, 0) still name their rotations; nullopt for a
+// zero or non-finite quaternion, which names none. Every front end reads quaternions through it.
+std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z);
 
 // Standard Denavit-Hartenberg frame: T = Rz(theta) * Tz(d) * Tx(a) * Rx(alpha).
 Transform denavitHartenberg(double theta, double d, double a, double alpha);

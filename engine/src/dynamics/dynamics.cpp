@@ -12,6 +12,8 @@
 #include <optional>
 #include <set>
 
+#include <Eigen/Eigenvalues>
+
 #include "dynamics/breakaway_clutch.hpp"
 #include "dynamics/friction_contact_solver.hpp"
 #include "dynamics/generalized_coordinates.hpp"
@@ -61,14 +63,27 @@ VectorX currentVelocities(const World& world, const GeneralizedCoordinates& coor
   return u;
 }
 
+// A body's mass and inertia must make a well-posed contact problem: a mass from a microgram to
+// a million tonnes, and an inertia (per unit mass) symmetric and positive definite with its
+// principal moments within 1e12 of each other. Anything else (1e-300 g, an indefinite inertia
+// whose determinant is positive) would reach Siconos as a singular problem, which aborts.
 void checkMass(const World& world, const BodyRef& ref) {
+  constexpr double kLightest = 1e-6, kHeaviest = 1e12;  // g
   const BodyModel& model = bodyModel(world, ref);
-  const bool inertia_ok = model.inertia.allFinite() && model.inertia.determinant() > 0.0;
-  if (!(model.mass > 0.0 && std::isfinite(model.mass)) || !inertia_ok) {
+  bool inertia_ok =
+      model.inertia.allFinite() && (model.inertia - model.inertia.transpose()).norm() <=
+                                       1e-9 * std::max(1.0, model.inertia.norm());
+  if (inertia_ok) {
+    const Eigen::SelfAdjointEigenSolver<Matrix3> moments(model.inertia);
+    const Vector3 m = moments.eigenvalues();
+    inertia_ok = moments.info() == Eigen::Success && m.minCoeff() > 0.0 &&
+                 m.minCoeff() >= 1e-12 * m.maxCoeff();
+  }
+  if (!(model.mass >= kLightest && model.mass <= kHeaviest) || !inertia_ok) {
     throw Error(SourceLocation{model.file.string(), 0, "mass"},
-                fmt::format("'{}' takes part in dynamics but its mass ({} g) or inertia is not "
-                            "positive",
-                            describe(world, ref), model.mass));
+                fmt::format("'{}' takes part in dynamics but its mass ({} g, from {} to {}) or "
+                            "inertia (symmetric, positive definite) is out of range",
+                            describe(world, ref), model.mass, kLightest, kHeaviest));
   }
 }
 

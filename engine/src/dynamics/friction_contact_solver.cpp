@@ -1,5 +1,7 @@
 #include "dynamics/friction_contact_solver.hpp"
 
+#include "graspkit/error.hpp"
+
 #include <FrictionContactProblem.h>
 #include <Friction_cst.h>
 #include <NonSmoothDrivers.h>
@@ -58,6 +60,11 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
     return solution;
   }
   numerics_set_verbose(0);
+  // Siconos asserts (and aborts the process) on some non-finite problems: never hand it one.
+  if (!W_in.allFinite() || !q_in.allFinite() || !mu_in.allFinite() || !start.allFinite())
+    throw Error(
+        "the contact problem holds a number that is not finite (a body's mass or "
+        "inertia, or a velocity, out of range)");
   // Siconos takes non-const pointers; it reads them only.
   MatrixX W = W_in;
   VectorX q = q_in;

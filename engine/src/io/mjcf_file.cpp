@@ -509,6 +509,8 @@ class MjcfReader {
       left_out_joint_names_.insert(j.name);
       return;
     }
+    if (joints_.size() == static_cast<std::size_t>(kMaxRobotJoints))
+      throw Error(s.where(), fmt::format("more than {} joints in one robot", kMaxRobotJoints));
     if (!joint_index_.emplace(j.name, static_cast<int>(joints_.size())).second)
       throw Error(s.where(), fmt::format("joint '{}' is defined twice", j.name));
     bodies_[body].joints.push_back(static_cast<int>(joints_.size()));
@@ -685,6 +687,8 @@ class MjcfReader {
         continue;
       }
       if (targets.empty()) continue;
+      if (actuators_.size() == static_cast<std::size_t>(kMaxRobotDofs))
+        throw Error(c.where(), fmt::format("more than {} DOFs in one robot", kMaxRobotDofs));
       actuators_.push_back({spec, targets});
     }
   }
@@ -711,6 +715,9 @@ class MjcfReader {
     }
     if (!actuators_.empty()) return;
     // No actuators: every joint is a DOF, as in a URDF.
+    if (joints_.size() > static_cast<std::size_t>(kMaxRobotDofs))
+      throw Error(joints_[kMaxRobotDofs].source.where(),
+                  fmt::format("more than {} DOFs in one robot", kMaxRobotDofs));
     for (std::size_t j = 0; j < joints_.size(); ++j) {
       drives_[j] = {static_cast<int>(dofs_.size()), 1.0, 0.0};
       dofs_.push_back({joints_[j].name, joints_[j].source, 0.0, 0.0});

@@ -131,6 +131,11 @@ class UrdfReader {
       if (!link_elements_.emplace(name, e).second)
         throw Error(xml::at(file_, *e), fmt::format("a second link named '{}'", name));
       link_order_.emplace(name, static_cast<int>(link_order_.size()));
+      // The robot limits, before anything is built from the file (a URDF is otherwise
+      // unbounded: a 100,000-link chain would take minutes).
+      if (link_order_.size() > static_cast<std::size_t>(kMaxRobotJoints))
+        throw Error(xml::at(file_, *e),
+                    fmt::format("more than {} links in one robot", kMaxRobotJoints));
     }
     for (const XMLElement* e : xml::children(root, "joint")) {
       const char* name = e->Attribute("name");
@@ -138,6 +143,9 @@ class UrdfReader {
       if (!joint_elements_.emplace(name, e).second)
         throw Error(xml::at(file_, *e), fmt::format("a second joint named '{}'", name));
       joint_order_.push_back(name);
+      if (joint_order_.size() > static_cast<std::size_t>(kMaxRobotJoints))
+        throw Error(xml::at(file_, *e),
+                    fmt::format("more than {} joints in one robot", kMaxRobotJoints));
     }
     if (link_elements_.empty()) throw Error(xml::at(file_, root), "a URDF robot needs a <link>");
   }
@@ -300,12 +308,14 @@ class UrdfReader {
 
   // The joints whose parent is `link` (file order), movable or fixed.
   std::vector<urdf::JointSharedPtr> jointsBelow(const std::string& link) const {
-    std::vector<urdf::JointSharedPtr> out;
-    for (const std::string& name : joint_order_) {
-      const urdf::JointSharedPtr& j = model_->joints_.at(name);
-      if (j->parent_link_name == link) out.push_back(j);
+    if (below_.empty()) {  // indexed once: a scan per link made loading quadratic
+      for (const std::string& name : joint_order_) {
+        const urdf::JointSharedPtr& j = model_->joints_.at(name);
+        below_[j->parent_link_name].push_back(j);
+      }
     }
-    return out;
+    const auto found = below_.find(link);
+    return found == below_.end() ? std::vector<urdf::JointSharedPtr>{} : found->second;
   }
 
   // The links rigidly attached to `link` by fixed joints (itself included), with their frames
@@ -358,6 +368,9 @@ class UrdfReader {
     for (const std::string& name : joint_order_) {
       const urdf::Joint& j = joint(name);
       if (!isMovable(j) || j.mimic || !under.count(name)) continue;
+      if (robot.dofs.size() == static_cast<std::size_t>(kMaxRobotDofs))
+        throw Error(xml::at(file_, *joint_elements_.at(name)),
+                    fmt::format("more than {} DOFs in one robot", kMaxRobotDofs));
       dof_of_[name] = static_cast<int>(robot.dofs.size());
       Dof dof;
       dof.type = DofType::Rigid;
@@ -759,11 +772,10 @@ class UrdfReader {
   std::vector<std::string> joint_order_;
   urdf::ModelInterfaceSharedPtr model_;
   std::map<std::string, int> dof_of_;
-  std::map<int, std::string> mimics_;
-  std::map<std::string, LinkRef> link_ref_;
-  std::set<std::string>
-      placed_;  // links already given to a chain  // URDF link -> the graspkit link it is part of
-                // // robot-wide joint index -> name, for mimic joints
+  std::map<int, std::string> mimics_;        // robot-wide joint index -> name, mimic joints
+  std::map<std::string, LinkRef> link_ref_;  // URDF link -> the graspkit link it is part of
+  std::set<std::string> placed_;             // links already given to a chain
+  mutable std::map<std::string, std::vector<urdf::JointSharedPtr>> below_;  // parent -> joints
 };
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "graspkit/transform.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace graspkit {
 
 Transform makeTransform(const Vector3& translation, const Quaternion& rotation) {
@@ -7,6 +10,12 @@ Transform makeTransform(const Vector3& translation, const Quaternion& rotation) 
   t.linear() = rotation.normalized().toRotationMatrix();
   t.translation() = translation;
   return t;
+}
+
+std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z) {
+  const double largest = std::max({std::abs(w), std::abs(x), std::abs(y), std::abs(z)});
+  if (!(largest > 0.0) || !std::isfinite(largest)) return std::nullopt;
+  return Quaternion(w / largest, x / largest, y / largest, z / largest).normalized();
 }
 
 Transform denavitHartenberg(double theta, double d, double a, double alpha) {
