@@ -161,6 +161,15 @@ file(WRITE ${work}/odd.json "{\"world\": \"${world}\", \"robot\": \"Barrett\", \
 graspkit_fails(1 "grasps[0]" render ${work}/odd.json --out bad.png)
 graspkit_fails(1 "grasps[0]" export ${work}/odd.json --gltf bad.glb)
 graspkit_fails(1 "64 million pixels" render plan.json --size 4000x4000 --out bad.png)
+# A plan with no grasps is named as such (it crashed view --html), and poses in a plan name a
+# rotation: a zero quaternion is refused, not taken as the identity.
+file(WRITE ${work}/empty.json "{\"world\": \"${world}\", \"robot\": \"Barrett\", \"grasps\": []}")
+graspkit_fails(1 "no grasps" view ${work}/empty.json --html bad.html)
+graspkit_fails(1 "no grasps" render ${work}/empty.json --out bad.png)
+file(WRITE ${work}/zero.json "{\"world\": \"${world}\", \"robot\": \"Barrett\", \"grasps\": [{\"pose\": {\"world\": {\"translation\": [0, 0, 0], \"quaternion\": [0, 0, 0, 0]}}, \"dofs\": [0, 0, 0, 0]}]}")
+graspkit_fails(1 "names no rotation" render ${work}/zero.json --out bad.png)
+# Outputs replace only regular files.
+graspkit_fails(1 "not a regular file" render ${world} --out /dev/null)
 if(EXISTS ${work}/bad.png OR EXISTS ${work}/bad.html OR EXISTS ${work}/bad.glb)
   message(FATAL_ERROR "a failed render left bad.png behind")
 endif()
