@@ -15,6 +15,7 @@
 #include <mujoco/mujoco.h>
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -330,6 +331,55 @@ TEST(MenagerieHandSetup, VirtualContactsSitOnThePalmAndTheFingertips) {
             (std::set<std::string>{"palm", "left_follower", "right_follower"}));
   EXPECT_EQ(contactLinks(*loadRobotFile(allegro)),
             (std::set<std::string>{"palm", "link_3.0", "link_7.0", "link_11.0", "link_15.0"}));
+}
+
+}  // namespace
+}  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// Menagerie's hands written back as MJCF by graspkit and read again: the same DOFs, every link
+// where it was at the same DOF vectors (a DOF reads back as its first joint's value), and the
+// excluded pairs still excluded.
+TEST(MenagerieRoundTrip, MjcfWrittenByGraspkitReadsBackToTheSameHand) {
+  GRASPKIT_REQUIRE_SHARED();
+  for (const char* name :
+       {"robotiq_2f85_v4/2f85.xml", "shadow_dexee/shadow_dexee.xml", "ufactory_xarm7/hand.xml"}) {
+    SCOPED_TRACE(name);
+    const fs::path file = *test::sharedDir() / "hands/menagerie" / name;
+    if (!fs::exists(file)) GTEST_SKIP() << "SKIPPED: " << file << " not found";
+    const auto original = loadRobotFile(file);
+    const fs::path written = saveMjcf(*original, test::scratchDir() / "round_trip");
+    const auto back = loadMjcfFile(written);
+    ASSERT_EQ(back->dofs.size(), original->dofs.size());
+    ASSERT_EQ(back->chains.size(), original->chains.size());
+    for (std::size_t c = 0; c < original->chains.size(); ++c)
+      ASSERT_EQ(back->chains[c].links.size(), original->chains[c].links.size());
+    Robot a(original), b(back);
+    for (const std::vector<double>& values : dofSamples(*original)) {
+      a.setDofValues(values);
+      std::vector<double> scaled;
+      for (std::size_t d = 0; d < values.size(); ++d)
+        scaled.push_back(values[d] * original->joint(original->dofs[d].joints.front()).ratio);
+      b.setDofValues(scaled);
+      for (std::size_t c = 0; c < original->chains.size(); ++c)
+        for (std::size_t l = 0; l < original->chains[c].links.size(); ++l) {
+          const Transform pa = a.linkPose(static_cast<int>(c), static_cast<int>(l));
+          const Transform pb = b.linkPose(static_cast<int>(c), static_cast<int>(l));
+          EXPECT_LT((pa.translation() - pb.translation()).norm(), 1e-6) << c << " " << l;
+          EXPECT_LT((pa.linear() - pb.linear()).norm(), 1e-9) << c << " " << l;
+        }
+    }
+    for (const CollisionPair& pair : original->disabledCollisions) {
+      const bool kept = std::any_of(back->disabledCollisions.begin(),
+                                    back->disabledCollisions.end(), [&](const CollisionPair& p) {
+                                      return (p.first == pair.first && p.second == pair.second) ||
+                                             (p.first == pair.second && p.second == pair.first);
+                                    });
+      EXPECT_TRUE(kept) << pair.reason;
+    }
+  }
 }
 
 }  // namespace

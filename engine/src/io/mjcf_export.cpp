@@ -46,6 +46,7 @@ class MjcfWriter {
 
   fs::path write() {
     fs::create_directories(folder_ / "meshes");
+    used_.insert("palm");
     body_ << "    <body name=\"palm\" pos=\"0 0 0\">\n";
     contents("palm", robot_.palm.get(), 6);
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c));
@@ -57,8 +58,11 @@ class MjcfWriter {
     text << "  <compiler angle=\"radian\" meshdir=\"meshes\" inertiafromgeom=\"false\"/>\n";
     text << "  <asset>\n" << assets_.str() << "  </asset>\n";
     text << "  <worldbody>\n" << body_.str() << "  </worldbody>\n";
+    const std::string excludes = exclusions();
+    if (!excludes.empty()) text << "  <contact>\n" << excludes << "  </contact>\n";
     if (!equalities_.str().empty())
       text << "  <equality>\n" << equalities_.str() << "  </equality>\n";
+    text << actuators();
     text << "</mujoco>\n";
     const fs::path file = folder_ / (io::fileStem(robot_.name, "robot") + ".xml");
     writeFileAtomically(file, text.str());
@@ -129,6 +133,7 @@ class MjcfWriter {
       // The body: the link at its frame, or a placeholder at the DH frame after the joint.
       const Transform frame = link ? after * link->frame : after;
       const std::string body_name = name(link ? link->name : fmt::format("chain{}_joint{}", c, j));
+      if (link) link_body_[{c, static_cast<int>(link - chain.links.data())}] = body_name;
       body_ << fmt::format("{}<body name=\"{}\" {}>\n", std::string(indent, ' '), body_name,
                            placement(parent_frame.inverse() * frame));
       // The joint's axis: z of the DH frame before it, seen from the body.
@@ -160,11 +165,48 @@ class MjcfWriter {
     }
   }
 
+  // The pairs graspkit never checks and MuJoCo would (it leaves out only a body and its
+  // parent): one chain's links, and the robot's own exclusions with their reasons.
+  std::string exclusions() const {
+    std::ostringstream out;
+    auto body = [&](const LinkRef& ref) {
+      return ref.isBase() ? std::string("palm") : link_body_.at({ref.chain, ref.link});
+    };
+    for (std::size_t c = 0; c < robot_.chains.size(); ++c) {
+      const int links = static_cast<int>(robot_.chains[c].links.size());
+      for (int a = 0; a < links; ++a)
+        for (int b = a + 2; b < links; ++b)  // a body and its parent MuJoCo leaves out itself
+          out << fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n",
+                             body({static_cast<int>(c), a}), body({static_cast<int>(c), b}));
+    }
+    for (const CollisionPair& pair : robot_.disabledCollisions)
+      out << fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n", body(pair.first),
+                         body(pair.second));
+    return out.str();
+  }
+
+  // One position actuator per DOF, on the DOF's first joint, so that the file reads back (in
+  // graspkit, one DOF per actuator) with the robot's DOFs; gains in MuJoCo's units.
+  std::string actuators() const {
+    std::ostringstream out;
+    for (std::size_t d = 0; d < robot_.dofs.size(); ++d) {
+      const auto first = first_joint_.find(static_cast<int>(d));
+      if (first == first_joint_.end()) continue;
+      const bool prismatic = first_prismatic_.at(static_cast<int>(d));
+      const double kp = robot_.dofs[d].Kp / (prismatic ? 1e3 : 1e9);  // N/m or N m/rad
+      out << fmt::format("    <position name=\"dof{}\" joint=\"{}\" kp=\"{}\"/>\n", d,
+                         first->second.first, number(kp > 0.0 ? kp : 1.0));
+    }
+    const std::string text = out.str();
+    return text.empty() ? text : "  <actuator>\n" + text + "  </actuator>\n";
+  }
+
   // A DOF's joints after its first follow it: q_j = (ratio_j / ratio_first) q_first.
   void couple(const Joint& joint, const std::string& joint_name) {
     const auto first = first_joint_.find(joint.dof);
     if (first == first_joint_.end()) {
       first_joint_[joint.dof] = {joint_name, joint.ratio};
+      first_prismatic_[joint.dof] = joint.type == JointType::Prismatic;
       return;
     }
     equalities_ << fmt::format("    <joint joint1=\"{}\" joint2=\"{}\" polycoef=\"0 {} 0 0 0\"/>\n",
@@ -177,6 +219,8 @@ class MjcfWriter {
   std::set<std::string> used_;
   std::ostringstream assets_, body_, equalities_;
   std::map<int, std::pair<std::string, double>> first_joint_;
+  std::map<int, bool> first_prismatic_;
+  std::map<std::pair<int, int>, std::string> link_body_;  // (chain, link) -> body name
 };
 
 }  // namespace
