@@ -384,3 +384,37 @@ TEST(MenagerieRoundTrip, MjcfWrittenByGraspkitReadsBackToTheSameHand) {
 
 }  // namespace
 }  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// The hand setup travels into a GraspIt! robot file (convert --to graspit): the same closing
+// directions, switched-off pairs and virtual contacts (each at the same place in the world and
+// facing the same way at a DOF vector), so GraspIt! and graspkit plan with the same hand.
+TEST(MenagerieRoundTrip, GraspitRobotFilesCarryTheHandSetup) {
+  GRASPKIT_REQUIRE_SHARED();
+  const fs::path file = *test::sharedDir() / "hands/menagerie/robotiq_2f85_v4/2f85.xml";
+  if (!fs::exists(file)) GTEST_SKIP() << "SKIPPED: " << file << " not found";
+  const auto original = loadRobotFile(file);
+  const auto back = loadRobotFile(saveRobotFile(*original, test::scratchDir() / "graspit"));
+  ASSERT_EQ(back->dofs.size(), original->dofs.size());
+  for (std::size_t d = 0; d < back->dofs.size(); ++d)
+    EXPECT_EQ(back->dofs[d].defaultVelocity > 0, original->dofs[d].defaultVelocity > 0);
+  EXPECT_EQ(back->disabledCollisions.size(), original->disabledCollisions.size());
+  ASSERT_EQ(back->virtualContacts.size(), original->virtualContacts.size());
+  Robot a(original), b(back);
+  const std::vector<double> values{0.5};
+  a.setDofValues(values);
+  b.setDofValues(values);
+  for (std::size_t k = 0; k < original->virtualContacts.size(); ++k) {
+    const VirtualContact& va = original->virtualContacts[k];
+    const VirtualContact& vb = back->virtualContacts[k];
+    const Transform pa = va.finger < 0 ? a.pose() : a.linkPose(va.finger, va.link);
+    const Transform pb = vb.finger < 0 ? b.pose() : b.linkPose(vb.finger, vb.link);
+    EXPECT_LT((pa * va.location - pb * vb.location).norm(), 1e-6);
+    EXPECT_LT((pa.linear() * va.normal - pb.linear() * vb.normal).norm(), 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace graspkit

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <set>
 #include <sstream>
 
@@ -11,6 +13,7 @@
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/material.hpp"
+#include "graspkit/virtual_contact.hpp"
 #include "io/export_text.hpp"
 #include "io/off_text.hpp"
 
@@ -58,6 +61,7 @@ class GraspitWriter {
       xml << "    </dof>\n";
     }
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c), xml);
+    setup(xml);
     xml << "</robot>\n";
     const fs::path file = folder_ / (io::fileStem(robot_.name, "robot") + ".xml");
     writeFileAtomically(file, xml.str());
@@ -132,6 +136,63 @@ class GraspitWriter {
                          body(link.name, link.body.get(), link.frame));
     }
     xml << "    </chain>\n";
+  }
+
+  // The hand setup a URDF or MJCF hand was given (docs/hands.md), in GraspIt!'s own tags: the
+  // switched-off pairs, the approach direction, and the virtual contacts (a file of their own,
+  // moved into the DH frames the links are baked into). Closing directions travel as the sign
+  // of each DOF's defaultVelocity.
+  void setup(std::ostringstream& xml) {
+    for (const CollisionPair& p : robot_.disabledCollisions) {
+      xml << fmt::format(
+          "    <disableCollision body1_chain=\"{}\" body1_link=\"{}\" body2_chain=\"{}\" "
+          "body2_link=\"{}\"/>\n",
+          p.first.chain, std::max(p.first.link, 0), p.second.chain, std::max(p.second.link, 0));
+    }
+    if (robot_.approach) {
+      const Vector3& r = robot_.approach->referenceLocation;
+      const Vector3& d = robot_.approach->direction;
+      xml << fmt::format(
+          "    <approachDirection>\n        <referenceLocation>{} {} {}</referenceLocation>\n"
+          "        <direction>{} {} {}</direction>\n    </approachDirection>\n",
+          number(r.x()), number(r.y()), number(r.z()), number(d.x()), number(d.y()), number(d.z()));
+    }
+    if (robot_.virtualContacts.empty()) return;
+    const std::string file = fmt::format("virtual/{}.xml", io::fileStem(robot_.name, "robot"));
+    fs::create_directories(folder_ / "virtual");
+    std::string text = fmt::format(
+        "<?xml version=\"1.0\" ?>\n<virtual_contacts>\n  <robot_name>{}</robot_name>\n"
+        "  <num_contacts>{}</num_contacts>\n",
+        io::xmlEscaped(robot_.name), robot_.virtualContacts.size());
+    auto joined = [](const auto& v) {
+      std::string out;
+      for (long k = 0; k < v.size(); ++k) {
+        if (k > 0) out += ' ';
+        out += number(v[k]);
+      }
+      return out;
+    };
+    for (const VirtualContact& v : robot_.virtualContacts) {
+      const Transform bake =
+          v.finger < 0 ? Transform::Identity() : robot_.chains[v.finger].links[v.link].frame;
+      const Quaternion rotation(bake.linear() * v.rotation.toRotationMatrix());
+      text += fmt::format(
+          "  <virtual_contact>\n    <finger_number>{}</finger_number>\n"
+          "    <link_number>{}</link_number>\n    <num_friction_edges>{}</num_friction_edges>\n"
+          "    <friction_edges>\n",
+          v.finger, v.link, v.frictionEdges.size());
+      for (const auto& edge : v.frictionEdges)
+        text += fmt::format("      <friction_edge>{}</friction_edge>\n", joined(edge));
+      text += fmt::format(
+          "    </friction_edges>\n    <location>{}</location>\n    <rotation>{} {} {} "
+          "{}</rotation>\n    <translation>{}</translation>\n    <normal>{}</normal>\n"
+          "    <sCof>{}</sCof>\n  </virtual_contact>\n",
+          joined(Vector3(bake * v.location)), number(rotation.w()), number(rotation.x()),
+          number(rotation.y()), number(rotation.z()), joined(Vector3(bake * v.translation)),
+          joined(Vector3(bake.linear() * v.normal)), number(v.sCof));
+    }
+    writeFileAtomically(folder_ / file, text + "</virtual_contacts>\n");
+    xml << fmt::format("    <virtualContacts>{}</virtualContacts>\n", file);
   }
 
   const RobotModel& robot_;
