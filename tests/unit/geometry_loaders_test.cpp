@@ -547,6 +547,23 @@ TEST(InventorLoader, SelfMultiplyingSceneIsRejected) {
 // ---------------------------------------------------------------------------------------------
 // File nodes: geometry split over several files
 
+// Coin reads an unquoted string as one word: `File { name sub/b.wrl }` (as GraspIt!'s ARMAR
+// hand writes it) includes the same file as the quoted form, and gives the same mesh.
+TEST(InventorFileNodes, AnUnquotedNameIncludesTheSameFile) {
+  const fs::path folder = test::scratchDir();
+  fs::create_directory(folder / "sub");
+  writeFile(folder / "sub", "b.wrl", "#VRML V1.0 ascii\nSeparator { Cube { width 3 } }\n");
+  writeFile(folder, "quoted.iv",
+            "#Inventor V2.1 ascii\nSeparator {\n Sphere { }\n File { name \"sub/b.wrl\" }\n}\n");
+  writeFile(folder, "unquoted.iv",
+            "#Inventor V2.1 ascii\nSeparator {\n Sphere { }\n File { name sub/b.wrl }\n}\n");
+  const TriangleMesh quoted = loadMesh(folder / "quoted.iv");
+  const TriangleMesh unquoted = loadMesh(folder / "unquoted.iv");
+  ASSERT_GT(quoted.triangles.size(), 12u);
+  EXPECT_EQ(unquoted.triangles.size(), quoted.triangles.size());
+  EXPECT_EQ(unquoted.vertices, quoted.vertices);
+}
+
 // A scene split over files (an Inventor file including a VRML 1.0 file and an Inventor file that
 // includes the VRML one again, DEF'd and USEd) gives what Coin gives for the same scene written
 // in one file: the second method. Included nodes go where the File node was, without a

@@ -427,14 +427,24 @@ class SceneTextCheck {
     std::size_t at = nextToken(brace + 1);
     const std::string_view field = text_.substr(at, 4);
     at = nextToken(at + 4);
-    if (field != "name" || at >= text_.size() || text_[at] != '"')
+    if (field != "name" || at >= text_.size() || text_[at] == '}')
       fail("a File node holds one field: name \"file\"");
     std::string name;
-    for (++at; at < text_.size() && text_[at] != '"'; ++at) {
-      if (text_[at] == '\\' && at + 1 < text_.size()) ++at;
-      name += text_[at];
+    if (text_[at] == '"') {
+      for (++at; at < text_.size() && text_[at] != '"'; ++at) {
+        if (text_[at] == '\\' && at + 1 < text_.size()) ++at;
+        name += text_[at];
+      }
+      at = nextToken(at + 1);
+    } else {
+      // Coin reads an unquoted string as one word, up to white space (GraspIt!'s ARMAR hand
+      // writes `File { name armar/hands/palm1_r.iv }`).
+      for (; at < text_.size() && !std::isspace(static_cast<unsigned char>(text_[at])) &&
+             text_[at] != '}';
+           ++at)
+        name += text_[at];
+      at = nextToken(at);
     }
-    at = nextToken(at + 1);
     if (at >= text_.size() || text_[at] != '}') fail("a File node holds one field: name \"file\"");
     static std::atomic<std::uint64_t> counter{0};
     includes_.push_back({name, line_, fmt::format("graspkit-include-{}", counter++)});
