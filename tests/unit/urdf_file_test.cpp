@@ -544,3 +544,60 @@ TEST(UrdfFile, RobotsPastTheLimitsAreRefusedNamingTheElement) {
 
 }  // namespace
 }  // namespace graspkit
+
+namespace graspkit {
+namespace {
+
+// Numbers urdfdom would take quietly (dropping a NaN mass, keeping an axis it cannot normalise)
+// are refused by graspkit with the element: NaN and infinite values, a negative mass, sizes that
+// are not positive, and values past a million (an axis 1e308 1e308 0 has no direction).
+TEST(UrdfFile, NumbersUrdfdomWouldTakeAreCheckedFirst) {
+  const std::string link_part =
+      R"(<link name="palm"><collision><geometry><box size="0.01 0.01 0.01"/></geometry></collision></link>)";
+  const std::string joint =
+      R"(<joint name="j" type="revolute"><parent link="palm"/><child link="f"/>
+    <origin xyz="%ORIGIN%"/><axis xyz="%AXIS%"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>)";
+  struct Case {
+    const char* name;
+    std::string finger;
+    std::string origin = "0 0 0.01";
+    std::string axis = "0 1 0";
+    const char* message;
+  };
+  const std::string box =
+      R"(<collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision>)";
+  const Case cases[] = {
+      {"nan_mass",
+       R"(<inertial><mass value="nan"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>)" +
+           box,
+       "0 0 0.01", "0 1 0", "not a finite number"},
+      {"negative_mass",
+       R"(<inertial><mass value="-1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>)" +
+           box,
+       "0 0 0.01", "0 1 0", "negative mass"},
+      {"zero_box", R"(<collision><geometry><box size="0 0.01 0.04"/></geometry></collision>)",
+       "0 0 0.01", "0 1 0", "must be positive"},
+      {"inf_radius", R"(<collision><geometry><sphere radius="inf"/></geometry></collision>)",
+       "0 0 0.01", "0 1 0", "not a finite number"},
+      {"huge_axis", box, "0 0 0.01", "1e308 1e308 0", "within +-1e6"},
+      {"huge_origin", box, "1e308 0 0", "0 1 0", "within +-1e6"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::string j = joint;
+    j.replace(j.find("%ORIGIN%"), 8, c.origin);
+    j.replace(j.find("%AXIS%"), 6, c.axis);
+    const std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n" + link_part +
+                             "\n<link name=\"f\">" + c.finger + "</link>\n" + j + "\n</robot>\n";
+    try {
+      loadUrdfFile(writeFile(std::string(c.name) + ".urdf", text));
+      ADD_FAILURE() << "loaded";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+      EXPECT_GT(e.where().line, 0) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace graspkit

@@ -40,6 +40,7 @@
 #include "graspkit/self_collision_setup.hpp"
 #include "graspkit/virtual_contact.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
+#include "io/link_mass.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
 
@@ -244,7 +245,7 @@ class MjcfReader {
     std::vector<double> values;
     for (std::string_view token : xml::tokens(*text)) {
       const std::optional<double> v = xml::toDouble(token);
-      if (!v || !std::isfinite(*v) || std::abs(*v) > 1e9)
+      if (!v || !std::isfinite(*v) || std::abs(*v) > 1e6)
         throw Error(s.where(), fmt::format("{}=\"{}\": '{}' is not a finite number in range", attr,
                                            *text, token));
       values.push_back(*v);
@@ -1061,26 +1062,7 @@ class MjcfReader {
       moment += m * c;
     }
     body->mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
-    const MassProperties geometry = computeMassProperties(*body->mesh);
-    if (mass > 0.0) {
-      body->mass = mass;
-      body->cog = moment / mass;
-      const Vector3 c = body->cog;
-      Matrix3 about_cog =
-          inertia - mass * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose());
-      // A body whose mass came from geoms alone: its shape's inertia.
-      if (about_cog.norm() < 1e-12 * mass)
-        about_cog =
-            geometry.valid ? Matrix3(geometry.inertia * mass) : Matrix3(Matrix3::Identity() * mass);
-      body->inertia = about_cog / mass;
-      body->massFromFile = body->cogFromFile = body->inertiaFromFile = true;
-    } else {
-      body->mass = kDefaultMass;
-      body->cog = geometry.valid ? geometry.centroid : surfaceCentroid(*body->mesh);
-      body->inertia = geometry.valid ? geometry.inertia : Matrix3::Identity();
-      body->inertiaFallback = !geometry.valid;
-    }
-    body->maxRadius = maxRadius(*body->mesh, body->cog);
+    io::setLinkMassProperties(*body, mass, moment, inertia);
     return body;
   }
 

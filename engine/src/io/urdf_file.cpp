@@ -25,6 +25,7 @@
 #include "graspkit/self_collision_setup.hpp"
 #include "graspkit/virtual_contact.hpp"
 #include "io/denavit_hartenberg_fit.hpp"
+#include "io/link_mass.hpp"
 #include "io/xml.hpp"
 #include "model/dof_ranges.hpp"
 
@@ -38,6 +39,7 @@ namespace {
 constexpr double kMetre = 1000.0;  // mm
 // The most joints a hand's chains may hold, shared joints repeated (the robot limit).
 constexpr std::size_t kMaxChainJoints = 4096;
+constexpr double kLargestNumber = 1e6;
 constexpr double kKilogram = 1000.0;  // g
 // Torques in g mm^2/s^2 per N m, forces in g mm/s^2 per N.
 constexpr double kNewtonMetre = 1.0e9;
@@ -75,6 +77,7 @@ class UrdfReader {
     if (std::string_view(root.Name()) != "robot")
       throw Error(xml::at(file_, root), "the root element of a URDF file must be <robot>");
     indexElements(root);
+    checkLinks();
     checkJoints();
     checkTree(root);
     parse(root);
@@ -158,15 +161,68 @@ class UrdfReader {
     std::vector<double> values;
     for (std::string_view token : xml::tokens(text)) {
       const auto value = xml::toDouble(token);
-      if (!value || !std::isfinite(*value))
+      // Past a million (metres, kilograms, newtons) a number is a typo or an attack, and its
+      // squares overflow: an axis 1e308 1e308 0 has no direction in doubles.
+      if (!value || !std::isfinite(*value) || std::abs(*value) > kLargestNumber)
         throw Error(xml::at(file_, element),
-                    fmt::format("{}=\"{}\": '{}' is not a finite number", attribute, text, token));
+                    fmt::format("{}=\"{}\": '{}' is not a finite number within +-1e6", attribute,
+                                text, token));
       values.push_back(*value);
     }
     if (values.size() != count)
       throw Error(xml::at(file_, element),
                   fmt::format("{}=\"{}\" needs {} numbers", attribute, text, count));
     return values;
+  }
+
+  // What urdfdom would read quietly (it drops a NaN mass or size and loads the rest): every
+  // number of a link checked finite and in range, masses not negative, sizes positive.
+  void checkLinks() {
+    for (const auto& [name, e] : link_elements_) {
+      if (const XMLElement* inertial = e->FirstChildElement("inertial")) {
+        if (const XMLElement* origin = inertial->FirstChildElement("origin")) {
+          finiteNumbers(*origin, "xyz", 3);
+          finiteNumbers(*origin, "rpy", 3);
+        }
+        if (const XMLElement* mass = inertial->FirstChildElement("mass")) {
+          const std::vector<double> m = finiteNumbers(*mass, "value", 1);
+          if (!m.empty() && m[0] < 0.0)
+            throw Error(xml::at(file_, *mass), fmt::format("link '{}': a negative mass", name));
+        }
+        if (const XMLElement* inertia = inertial->FirstChildElement("inertia"))
+          for (const char* a : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"})
+            finiteNumbers(*inertia, a, 1);
+      }
+      for (const char* part : {"visual", "collision"}) {
+        for (const XMLElement* p = e->FirstChildElement(part); p; p = p->NextSiblingElement(part)) {
+          if (const XMLElement* origin = p->FirstChildElement("origin")) {
+            finiteNumbers(*origin, "xyz", 3);
+            finiteNumbers(*origin, "rpy", 3);
+          }
+          const XMLElement* geometry = p->FirstChildElement("geometry");
+          const XMLElement* shape = geometry ? geometry->FirstChildElement() : nullptr;
+          if (!shape) continue;
+          const std::string_view kind = shape->Name();
+          std::vector<double> sizes;
+          if (kind == "box") sizes = finiteNumbers(*shape, "size", 3);
+          if (kind == "sphere") sizes = finiteNumbers(*shape, "radius", 1);
+          if (kind == "cylinder") {
+            sizes = finiteNumbers(*shape, "radius", 1);
+            const std::vector<double> length = finiteNumbers(*shape, "length", 1);
+            sizes.insert(sizes.end(), length.begin(), length.end());
+          }
+          if (kind == "mesh") {
+            for (const double k : finiteNumbers(*shape, "scale", 3))
+              if (k == 0.0)
+                throw Error(xml::at(file_, *shape), fmt::format("link '{}': a zero scale", name));
+          }
+          for (const double size : sizes)
+            if (!(size > 0.0))
+              throw Error(xml::at(file_, *shape),
+                          fmt::format("link '{}': a {}'s size must be positive", name, kind));
+        }
+      }
+    }
   }
 
   void checkJoints() {
@@ -636,13 +692,11 @@ class UrdfReader {
     double mass = 0.0;
     Vector3 moment = Vector3::Zero();   // sum of m * c
     Matrix3 inertia = Matrix3::Zero();  // about the body origin, g mm^2
-    bool has_inertial = false;
     for (const auto& [member, frame] : rigidGroup(link)) {
       const Transform placed = to_body * frame;
       appendGeometry(member, placed, mesh, *body);
       const urdf::LinkConstSharedPtr l = model_->getLink(member);
       if (!l->inertial || l->inertial->mass <= 0.0) continue;
-      has_inertial = true;
       const urdf::Inertial& in = *l->inertial;
       const Transform at = placed * poseTransform(in.origin);
       const double m = in.mass * kKilogram;
@@ -657,21 +711,7 @@ class UrdfReader {
       moment += m * c;
     }
     body->mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
-    const MassProperties geometry = computeMassProperties(*body->mesh);
-    if (has_inertial) {
-      body->mass = mass;
-      body->cog = moment / mass;
-      const Vector3 c = body->cog;
-      body->inertia =
-          (inertia - mass * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose())) / mass;
-      body->massFromFile = body->cogFromFile = body->inertiaFromFile = true;
-    } else {
-      body->mass = kDefaultMass;
-      body->cog = geometry.valid ? geometry.centroid : surfaceCentroid(*body->mesh);
-      body->inertia = geometry.valid ? geometry.inertia : Matrix3::Identity();
-      body->inertiaFallback = !geometry.valid;
-    }
-    body->maxRadius = maxRadius(*body->mesh, body->cog);
+    io::setLinkMassProperties(*body, mass, moment, inertia);
     return body;
   }
 
