@@ -147,10 +147,13 @@ def test_engine_warnings_are_python_warnings_of_their_kind(tmp_path, models):
     assert issubclass(graspkit.UnknownElementWarning, graspkit.GraspkitWarning)
     assert any("colour" in str(w.message) and str(body) in str(w.message) for w in seen)
     # A filter that makes them errors makes the call raise.
+    # ... and leaves the world as it was (no body added behind the exception).
     with warnings.catch_warnings():
         warnings.simplefilter("error", graspkit.GraspkitWarning)
+        world = graspkit.World()
         with pytest.raises(graspkit.UnknownElementWarning):
-            graspkit.World().add_object(body)
+            world.add_object(body)
+        assert len(world.bodies) == 0
 
 
 def test_values_numpy_cannot_convert_raise_instead_of_crashing(graspit_data):

@@ -81,21 +81,23 @@ LoadOptions loadOptions(const std::vector<std::filesystem::path>& roots, bool ge
 BodyView addBody(const WorldPtr& world, const std::filesystem::path& relative,
                  const py::object& pose, BodyKind kind) {
   const std::filesystem::path file = std::filesystem::absolute(relative);
-  return withWarnings([&] {
-    Body body;
-    body.model = loadBodyFile(file, &world->cache);
-    body.kind = kind;
-    body.setPose(pose.is_none() ? Transform::Identity() : toTransform(pose));
-    return BodyView{world, world->world.addBody(std::move(body))};
-  });
+  Body body;
+  body.model = loadBodyFile(file, &world->cache);
+  body.kind = kind;
+  body.setPose(pose.is_none() ? Transform::Identity() : toTransform(pose));
+  // The load's warnings reach Python before the world changes: a filter that turns them into
+  // errors leaves the world as it was.
+  flushWarnings();
+  return BodyView{world, world->world.addBody(std::move(body))};
 }
 
 RobotView addRobot(const WorldPtr& world, const std::filesystem::path& relative,
                    const py::object& pose, bool generic_robots) {
   const std::filesystem::path file = std::filesystem::absolute(relative);
+  const Transform t = pose.is_none() ? Transform::Identity() : toTransform(pose);
+  Robot robot(loadRobotFile(file, loadOptions({}, generic_robots), &world->cache));
+  flushWarnings();  // before the world changes, as in addBody
   return withWarnings([&] {
-    const Transform t = pose.is_none() ? Transform::Identity() : toTransform(pose);
-    Robot robot(loadRobotFile(file, loadOptions({}, generic_robots), &world->cache));
     const int index = world->world.addRobot(std::move(robot), file);
     world->world.setRobotPose(index, t);
     return RobotView{world, index};
