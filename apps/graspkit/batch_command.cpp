@@ -211,7 +211,7 @@ class BatchRun {
   // Reads (or starts) the manifest and returns this share's objects still to run; the others
   // are counted as settled. Only the rank that writes the manifest calls it.
   std::vector<std::size_t> prepare() {
-    fs::create_directories(options_.out / "grasps");
+    createOutputFolder(options_.out / "grasps");
     removeStaleTemporaries(options_.out / "grasps");
     manifest_file_ = shard_.count == 1 ? options_.out / "manifest.json"
                                        : options_.out / fmt::format("manifest-{}-of-{}.json",

@@ -47,7 +47,7 @@ struct StagingFolder {
   explicit StagingFolder(const fs::path& out) {
     std::random_device device;
     path = out / fmt::format(".objects-staging-{:08x}", device());
-    fs::create_directories(path);
+    createOutputFolder(path);
   }
   ~StagingFolder() {
     std::error_code ignored;
@@ -82,7 +82,7 @@ void addObjectsCommand(CLI::App& app, ObjectsOptions& options) {
 
 int runObjects(const ObjectsOptions& options, bool quiet, std::ostream& out) {
   const ObjectGeneratorOptions generator = generatorOptions(options);
-  fs::create_directories(options.out);
+  createOutputFolder(options.out);
   // Everything is written to a staging folder first and compared with what is there, so a
   // refusal leaves the folder as it was.
   const StagingFolder staging(options.out);
@@ -106,7 +106,8 @@ int runObjects(const ObjectsOptions& options, bool quiet, std::ostream& out) {
   written.push_back("objects.txt");
   for (const std::string& name : written) {
     const fs::path target = options.out / name;
-    if (!options.force && fs::exists(target) && readInputFile(target) != readInputFile(staging.path / name))
+    if (!options.force && fs::exists(target) &&
+        readInputFile(target) != readInputFile(staging.path / name))
       throw Error(SourceLocation{target.string()},
                   "the file exists and differs from the generated one; --force replaces it "
                   "(nothing was written)");

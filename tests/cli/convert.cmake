@@ -101,3 +101,21 @@ foreach(bad "--link-material;nope=wood" "--link-material;left_finger" "--urdf-ma
     message(FATAL_ERROR "info ${bad} was not refused with a reason (${rc}): ${err}")
   endif()
 endforeach()
+
+# An --out that cannot be a folder (a file, a FIFO, a place under /proc) is bad input: exit 1 with
+# the folder named, never an internal error (exit 3).
+file(WRITE ${dir}/a_file.txt "x")
+foreach(to urdf mjcf graspit)
+  foreach(out ${dir}/a_file.txt /proc/graspkit-no-such-folder)
+    execute_process(COMMAND ${GRASPKIT} -q convert ${urdf} --to ${to} --out ${out}
+                    ERROR_VARIABLE err RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 1 OR NOT err MATCHES "cannot create the output folder")
+      message(FATAL_ERROR "convert --to ${to} --out ${out}: exit ${rc}: ${err}")
+    endif()
+  endforeach()
+endforeach()
+execute_process(COMMAND ${GRASPKIT} -q objects --generate 2 --out ${dir}/a_file.txt
+                ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "cannot create the output folder")
+  message(FATAL_ERROR "objects --out a file: exit ${rc}: ${err}")
+endif()

@@ -272,7 +272,7 @@ std::shared_ptr<const BodyModel> loadBodyFile(const fs::path& file, ModelCache* 
 
 fs::path saveBodyFiles(const fs::path& folder, const std::string& name, const TriangleMesh& mesh,
                        const BodyXmlOptions& options) {
-  fs::create_directories(folder);
+  createOutputFolder(folder);
   const fs::path off = folder / (name + ".off");
   const fs::path xml = folder / (name + ".xml");
   writeFileAtomically(off, io::offText(mesh));

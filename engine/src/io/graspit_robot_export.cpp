@@ -40,7 +40,7 @@ class GraspitWriter {
   GraspitWriter(const RobotModel& robot, const fs::path& folder) : robot_(robot), folder_(folder) {}
 
   fs::path write() {
-    fs::create_directories(folder_ / "iv");
+    createOutputFolder(folder_ / "iv");
     std::ostringstream xml;
     xml << "<?xml version=\"1.0\" ?>\n";
     xml << fmt::format("<!-- written by graspkit from {} -->\n",
@@ -159,7 +159,7 @@ class GraspitWriter {
     }
     if (robot_.virtualContacts.empty()) return;
     const std::string file = fmt::format("virtual/{}.xml", io::fileStem(robot_.name, "robot"));
-    fs::create_directories(folder_ / "virtual");
+    createOutputFolder(folder_ / "virtual");
     std::string text = fmt::format(
         "<?xml version=\"1.0\" ?>\n<virtual_contacts>\n  <robot_name>{}</robot_name>\n"
         "  <num_contacts>{}</num_contacts>\n",

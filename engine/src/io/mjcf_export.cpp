@@ -45,7 +45,7 @@ class MjcfWriter {
   MjcfWriter(const RobotModel& robot, const fs::path& folder) : robot_(robot), folder_(folder) {}
 
   fs::path write() {
-    fs::create_directories(folder_ / "meshes");
+    createOutputFolder(folder_ / "meshes");
     used_.insert("palm");
     body_ << "    <body name=\"palm\" pos=\"0 0 0\">\n";
     contents("palm", robot_.palm.get(), 6);

@@ -89,6 +89,16 @@ void checkReplaceable(const fs::path& file) {
   }
 }
 
+void createOutputFolder(const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw Error(SourceLocation{folder.string()},
+                fmt::format("cannot create the output folder: {}",
+                            ec ? ec.message() : std::string("something else stands there")));
+  }
+}
+
 void writeFileAtomically(const fs::path& file, std::string_view text) {
   std::error_code ec;
   checkReplaceable(file);

@@ -57,7 +57,7 @@ class UrdfWriter {
   UrdfWriter(const RobotModel& robot, const fs::path& folder) : robot_(robot), folder_(folder) {}
 
   fs::path write() {
-    fs::create_directories(folder_ / "meshes");
+    createOutputFolder(folder_ / "meshes");
     const std::string palm = name(robot_.palm ? robot_.palm->name : "", "palm");
     link(palm, robot_.palm.get());
     for (std::size_t c = 0; c < robot_.chains.size(); ++c) chain(static_cast<int>(c), palm);

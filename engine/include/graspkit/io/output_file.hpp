@@ -22,6 +22,11 @@ namespace graspkit {
 // checks writeFileAtomically makes first; writers that rename their own temporaries use it).
 void checkReplaceable(const std::filesystem::path& file);
 
+// Creates `folder` and the folders above it where missing (an output folder a command writes
+// into). Throws graspkit::Error naming the folder and the operating system's reason when it
+// cannot: a file, a FIFO or /proc standing where a folder must be is bad input, not a crash.
+void createOutputFolder(const std::filesystem::path& folder);
+
 // Throws graspkit::Error naming `file` and the reason.
 void writeFileAtomically(const std::filesystem::path& file, std::string_view text);
 
