@@ -360,13 +360,32 @@ class UrdfReader {
 
   // --- The model ------------------------------------------------------------------------------
 
-  const urdf::Joint& joint(const std::string& name) const { return *model_->joints_.at(name); }
+  // A joint urdfdom read; an element urdfdom dropped (its reading differs from tinyxml2's, as
+  // for a name with odd bytes) is an error at the element, not a crash.
+  const urdf::JointSharedPtr& jointPtr(const std::string& name) const {
+    const auto found = model_->joints_.find(name);
+    if (found == model_->joints_.end() || !found->second)
+      throw Error(xml::at(file_, *joint_elements_.at(name)),
+                  fmt::format("urdfdom did not read joint '{}'", name));
+    return found->second;
+  }
+  const urdf::Joint& joint(const std::string& name) const { return *jointPtr(name); }
+  urdf::LinkConstSharedPtr urdfLink(const std::string& name) const {
+    urdf::LinkConstSharedPtr l = model_->getLink(name);
+    if (!l) {
+      const auto e = link_elements_.find(name);
+      if (e == link_elements_.end())
+        throw Error(xml::at(file_, document_.root()), fmt::format("no link named '{}'", name));
+      throw Error(xml::at(file_, *e->second), fmt::format("urdfdom did not read link '{}'", name));
+    }
+    return l;
+  }
 
   // The joints whose parent is `link` (file order), movable or fixed.
   std::vector<urdf::JointSharedPtr> jointsBelow(const std::string& link) const {
     if (below_.empty()) {  // indexed once: a scan per link made loading quadratic
       for (const std::string& name : joint_order_) {
-        const urdf::JointSharedPtr& j = model_->joints_.at(name);
+        const urdf::JointSharedPtr& j = jointPtr(name);
         below_[j->parent_link_name].push_back(j);
       }
     }
@@ -574,7 +593,7 @@ class UrdfReader {
 
   // Whether a link has geometry or mass of its own.
   bool hasBody(const std::string& link) const {
-    const urdf::LinkConstSharedPtr l = model_->getLink(link);
+    const urdf::LinkConstSharedPtr l = urdfLink(link);
     return !l->collision_array.empty() || !l->visual_array.empty() ||
            (l->inertial && l->inertial->mass > 0.0);
   }
@@ -695,7 +714,7 @@ class UrdfReader {
     for (const auto& [member, frame] : rigidGroup(link)) {
       const Transform placed = to_body * frame;
       appendGeometry(member, placed, mesh, *body);
-      const urdf::LinkConstSharedPtr l = model_->getLink(member);
+      const urdf::LinkConstSharedPtr l = urdfLink(member);
       if (!l->inertial || l->inertial->mass <= 0.0) continue;
       const urdf::Inertial& in = *l->inertial;
       const Transform at = placed * poseTransform(in.origin);
@@ -717,7 +736,7 @@ class UrdfReader {
 
   void appendGeometry(const std::string& link, const Transform& placed, TriangleMesh& mesh,
                       BodyModel& body) {
-    const urdf::LinkConstSharedPtr l = model_->getLink(link);
+    const urdf::LinkConstSharedPtr l = urdfLink(link);
     std::vector<std::pair<urdf::GeometrySharedPtr, urdf::Pose>> shapes;
     for (const auto& c : l->collision_array)
       if (c && c->geometry) shapes.emplace_back(c->geometry, c->origin);
