@@ -156,12 +156,14 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
                   "--validate: simulated seconds per direction")
       ->default_val(2.0);
   cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
+      ->check(seedNumber())
       ->default_val(1);
   cmd->add_option("--shard", options.shard,
                   "K/N: take every N-th object from the K-th (default: a Slurm job array's task "
                   "from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, else all)");
   cmd->add_option("--object-timeout", options.objectTimeout,
                   "Seconds an object may take before it is killed and recorded as failed")
+      ->check(positiveFinite())
       ->default_val(1800.0);
 }
 

@@ -23,6 +23,8 @@ namespace graspkit::cli {
 
 // The check of a file argument: "no such file: NAME" or "NAME is a folder, not a file".
 CLI::Validator existingFile();
+CLI::Validator seedNumber();      // 0 .. 2^64 - 1, digits only
+CLI::Validator positiveFinite();  // > 0 and finite
 
 struct InfoOptions {
   std::filesystem::path file;

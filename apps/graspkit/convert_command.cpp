@@ -1,7 +1,6 @@
 // graspkit convert: GraspIt!'s legacy side files (.egr eigengrasps, .vgr virtual contacts) into
 // their XML forms, and a bare mesh into a Body XML beside it with computed mass properties.
 
-
 #include <fmt/format.h>
 
 #include "commands.hpp"

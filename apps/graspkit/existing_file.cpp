@@ -1,3 +1,6 @@
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <system_error>
 
@@ -16,6 +19,34 @@ CLI::Validator existingFile() {
         return {};
       },
       "FILE");
+}
+
+// A seed is a whole number from 0 to 2^64 - 1, written as one: CLI11 would take "-1" as
+// 2^64 - 1 and saturate 2^64 to it, so two different seeds would give the same run.
+CLI::Validator seedNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error != std::errc() || end != text.data() + text.size())
+          return "'" + text + "' is not a seed (a whole number from 0 to 18446744073709551615)";
+        return {};
+      },
+      "SEED");
+}
+
+// A finite number above zero (CLI11's PositiveNumber lets NaN through).
+CLI::Validator positiveFinite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
+            !std::isfinite(value) || !(value > 0.0))
+          return "'" + text + "' is not a finite number above zero";
+        return {};
+      },
+      "POSITIVE");
 }
 
 }  // namespace graspkit::cli

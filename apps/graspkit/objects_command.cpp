@@ -66,6 +66,7 @@ void addObjectsCommand(CLI::App& app, ObjectsOptions& options) {
       ->required()
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}));
   cmd->add_option("--seed", options.seed, "The set's seed: object i of a seed never changes")
+      ->check(seedNumber())
       ->default_val(1);
   cmd->add_option("--out", options.out, "The folder to write into")->required();
   cmd->add_option("--min-size", options.minSize, "Smallest largest-extent, mm")->default_val(40.0);

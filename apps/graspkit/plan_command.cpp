@@ -255,7 +255,7 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
                   "Plan for this long (every stage included) instead of a step count")
       ->excludes(steps);
   cmd->add_option("--threads", options.threads, "Search threads (default: every core)");
-  cmd->add_option("--seed", options.seed, "Random seed")->default_val(1);
+  cmd->add_option("--seed", options.seed, "Random seed")->check(seedNumber())->default_val(1);
   cmd->add_option("--top", options.top, "How many grasps to keep (the best list's size)")
       ->default_val(20)
       ->check(CLI::Range(1, 10000));

@@ -189,3 +189,14 @@ endif()
 if(mismatches)
   message(FATAL_ERROR "saved worlds do not reproduce the planned grasps:\n${mismatches}")
 endif()
+
+# A seed is a whole number from 0 to 2^64 - 1: -1 and 2^64 are usage errors (CLI11 would make
+# both 2^64 - 1, so two different seeds would give the same run), 2^64 - 1 itself is a seed.
+foreach(bad -1 18446744073709551616 1e3)
+  execute_process(COMMAND ${GRASPKIT} -q plan ${SHARED_DIR}/graspit-data/worlds/plannerMug.xml
+                          --steps 10 --seed ${bad}
+                  OUTPUT_QUIET ERROR_VARIABLE err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "is not a seed")
+    message(FATAL_ERROR "plan --seed ${bad}: exit ${rc}: ${err}")
+  endif()
+endforeach()
