@@ -20,6 +20,7 @@
 #include "batch_object.hpp"
 #include "commands.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/grasp_dataset_file.hpp"
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/version.hpp"
@@ -233,6 +234,7 @@ class BatchRun {
                     fmt::format("the folder holds a batch run with other settings ({}); use "
                                 "another --out, or the same settings to resume",
                                 previous.value("settings", json()).dump()));
+      checkManifestObjects(previous["objects"]);
       manifest_["objects"] = previous["objects"];
     }
     std::vector<std::size_t> pending;
@@ -241,7 +243,7 @@ class BatchRun {
       ++share_;
       const json& entry = entryOf(i);
       const std::string status = entry.value("status", "");
-      if (status == "done" && fs::exists(dataset(i))) {
+      if (status == "done" && datasetLoads(dataset(i))) {
         ++done_, ++settled_;
       } else if (status == "failed" && entry.value("attempts", 0) >= kMaxAttempts) {
         ++failed_, ++settled_;
@@ -326,6 +328,36 @@ class BatchRun {
   }
 
  private:
+  // A manifest's "objects" as batch writes it: an object of entries, each an object whose
+  // status is a string and attempts a whole number. A tampered manifest is bad input.
+  void checkManifestObjects(const json& objects) const {
+    auto refuse = [&](const std::string& what) {
+      throw Error(SourceLocation{manifest_file_.string(), 0, "objects"},
+                  "not a batch manifest: " + what);
+    };
+    if (!objects.is_object()) refuse("\"objects\" is not an object of entries");
+    for (const auto& [name, entry] : objects.items()) {
+      if (!entry.is_object()) refuse(fmt::format("entry '{}' is not an object", name));
+      if (entry.contains("status") && !entry["status"].is_string())
+        refuse(fmt::format("entry '{}': status is not a string", name));
+      if (entry.contains("attempts") && !entry["attempts"].is_number_integer())
+        refuse(fmt::format("entry '{}': attempts is not a whole number", name));
+      if (entry.contains("error") && !entry["error"].is_string())
+        refuse(fmt::format("entry '{}': error is not a string", name));
+    }
+  }
+
+  // A dataset marked done counts only when it loads: a truncated or replaced file is planned
+  // again rather than kept.
+  static bool datasetLoads(const fs::path& file) {
+    try {
+      loadGraspDataset(file);
+      return true;
+    } catch (const Error&) {
+      return false;
+    }
+  }
+
   json& entryOf(std::size_t i) {
     json& entry = manifest_["objects"][names_[i]];
     if (!entry.is_object()) entry = json::object();

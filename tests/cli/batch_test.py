@@ -103,6 +103,25 @@ run = batch(objects, sharded)  # unsharded, same settings: resumes from the merg
 if f"{COUNT} already settled" not in run.stdout or datasets(sharded) != files:
     fail(f"a run without --shard did not resume from the merged manifest: {run.stdout}")
 
+# A dataset marked done but truncated is planned again on resume, not kept.
+victim = sorted((sharded / "grasps").glob("*.h5"))[0]
+victim.write_bytes(victim.read_bytes()[:100])
+run = batch(objects, sharded)
+if f"{COUNT - 1} already settled" not in run.stdout:
+    fail(f"a truncated dataset was kept as done: {run.stdout}")
+if differences(sharded):
+    fail(f"the re-planned dataset is not the single run's: {differences(sharded)}")
+
+# A tampered manifest (a number where a status belongs) is bad input: exit 1, not 3.
+tampered = WORK / "tampered"
+shutil.copytree(sharded, tampered)
+data = json.loads((tampered / "manifest.json").read_text())
+next(iter(data["objects"].values()))["status"] = 5
+(tampered / "manifest.json").write_text(json.dumps(data))
+run = batch(objects, tampered, check=False)
+if run.returncode != 1 or "not a batch manifest" not in run.stderr:
+    fail(f"a tampered manifest gave exit {run.returncode}: {run.stderr}")
+
 # Killed mid-way, then resumed.
 killed = WORK / "killed"
 cmd = [GRASPKIT, "-q", "batch", "--hand", str(HAND), "--objects", str(objects), "--out",
