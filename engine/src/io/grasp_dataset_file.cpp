@@ -265,13 +265,18 @@ class Reader {
     return data;
   }
 
+  // Whether a dataset or attribute of `file_type` over `space` holds exactly one variable-length
+  // string (what the writer stores; an array of strings would overrun the one pointer read).
+  static bool oneString(hid_t file_type, hid_t space) {
+    return H5Tget_class(file_type) == H5T_STRING && H5Tis_variable_str(file_type) > 0 &&
+           H5Sget_simple_extent_npoints(space) == 1;
+  }
+
   std::string text(const char* path) {
     Handle set = open(path);
     Handle file_type(H5Dget_type(set), &H5Tclose);
     Handle space(H5Dget_space(set), &H5Sclose);
-    if (H5Tget_class(file_type) != H5T_STRING || H5Tis_variable_str(file_type) <= 0 ||
-        H5Sget_simple_extent_npoints(space) != 1)
-      fail(path, "is not one variable-length string");
+    if (!oneString(file_type, space)) fail(path, "is not one variable-length string");
     Handle type(Writer::stringType(), &H5Tclose);
     char* value = nullptr;
     if (H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0 || !value)
@@ -300,9 +305,7 @@ class Reader {
     Handle attr = openAttribute(name);
     Handle file_type(H5Aget_type(attr), &H5Tclose);
     Handle space(H5Aget_space(attr), &H5Sclose);
-    if (H5Tget_class(file_type) != H5T_STRING || H5Tis_variable_str(file_type) <= 0 ||
-        H5Sget_simple_extent_npoints(space) != 1)
-      fail(name, "is not one variable-length string");
+    if (!oneString(file_type, space)) fail(name, "is not one variable-length string");
     Handle type(Writer::stringType(), &H5Tclose);
     char* value = nullptr;
     if (H5Aread(attr, type, &value) < 0 || !value) fail(name, "is not a string");
