@@ -10,9 +10,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -23,7 +25,9 @@
 #include "graspkit/io/grasp_dataset_file.hpp"
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/io/output_file.hpp"
+#include "graspkit/io/utf8.hpp"
 #include "graspkit/version.hpp"
+#include "process_runs.hpp"
 #include "progress_reporter.hpp"
 
 namespace graspkit::cli {
@@ -40,29 +44,49 @@ struct Shard {
   int count = 1;
 };
 
+// A whole number from 1 to kMaxShards written as one, or nullopt.
+constexpr long long kMaxShards = 1'000'000;
+std::optional<int> shardNumber(std::string_view text) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value < 0 ||
+      value > kMaxShards)
+    return std::nullopt;
+  return static_cast<int>(value);
+}
+
 // --shard K/N (1-based K), else a Slurm job array's task, else the whole set.
 Shard shardOf(const std::string& text) {
-  Shard shard;
   if (!text.empty()) {
-    int k = 0, n = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || k < 1 || k > n)
-      throw Error(fmt::format("--shard: '{}' is not K/N with 1 <= K <= N", text));
-    return {k - 1, n};
+    const auto slash = text.find('/');
+    const auto k = shardNumber(std::string_view(text).substr(0, slash));
+    const auto n = slash == std::string::npos
+                       ? std::nullopt
+                       : shardNumber(std::string_view(text).substr(slash + 1));
+    if (!k || !n || *k < 1 || *k > *n)
+      throw Error(fmt::format("--shard: '{}' is not K/N with 1 <= K <= N <= {}", text, kMaxShards));
+    return {*k - 1, *n};
   }
   const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
   const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
   const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-  if (id && count) {
-    const int first = min ? std::atoi(min) : 0;
-    shard = {std::atoi(id) - first, std::atoi(count)};
-    if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count)
-      throw Error(
-          fmt::format("SLURM_ARRAY_TASK_ID={} of SLURM_ARRAY_TASK_COUNT={} (first {}) "
-                      "is not a task of the array",
-                      id, count, first));
-  }
-  return shard;
+  if (!id || !count) return {};
+  const auto task = shardNumber(id);
+  const auto tasks = shardNumber(count);
+  const auto first = min ? shardNumber(min) : std::optional<int>(0);
+  if (!task || !tasks || !first || *tasks < 1 || *task < *first || *task - *first >= *tasks)
+    throw Error(
+        fmt::format("SLURM_ARRAY_TASK_ID={} of SLURM_ARRAY_TASK_COUNT={} (first {}) is not "
+                    "a task of the array",
+                    id, count, min ? min : "0"));
+  return {*task - *first, *tasks};
+}
+
+// Object names and paths go into the manifest (JSON) and the datasets (HDF5 UTF-8 strings).
+void requireUtf8(const std::string& text, const SourceLocation& where, const char* what) {
+  if (const auto bad = firstInvalidUtf8(text))
+    throw Error(where, fmt::format("{} holds byte 0x{:02X}, which is not UTF-8", what,
+                                   static_cast<unsigned char>(text[*bad])));
 }
 
 // The object files: every .xml body file of a folder (objects.txt's order when it has one), or
@@ -73,8 +97,12 @@ std::vector<fs::path> objectFiles(const fs::path& source) {
     list = source / "objects.txt";
     if (!fs::exists(list)) {
       std::vector<fs::path> files;
-      for (const auto& entry : fs::directory_iterator(source))
-        if (entry.path().extension() == ".xml") files.push_back(entry.path());
+      for (const auto& entry : fs::directory_iterator(source)) {
+        if (entry.path().extension() != ".xml") continue;
+        requireUtf8(entry.path().filename().string(), SourceLocation{source.string()},
+                    "--objects: a file name in the folder");
+        files.push_back(entry.path());
+      }
       std::sort(files.begin(), files.end());
       if (files.empty())
         throw Error(SourceLocation{source.string()}, "--objects: the folder holds no .xml file");
@@ -87,6 +115,7 @@ std::vector<fs::path> objectFiles(const fs::path& source) {
   int number = 0;
   while (std::getline(lines, line)) {
     ++number;
+    requireUtf8(line, SourceLocation{list.string(), number}, "the line");
     line = line.substr(0, line.find('#'));
     line.erase(0, line.find_first_not_of(" \t\r"));
     line.erase(line.find_last_not_of(" \t\r") + 1);
@@ -109,6 +138,14 @@ std::vector<std::string> objectNames(const std::vector<fs::path>& files) {
     names.push_back(name);
   }
   return names;
+}
+
+// `options`, once the paths the manifest records are found to be UTF-8.
+const BatchOptions& utf8Checked(const BatchOptions& options) {
+  requireUtf8(options.hand.string(), {}, "--hand");
+  requireUtf8(options.objects.string(), {}, "--objects");
+  requireUtf8(options.out.string(), {}, "--out");
+  return options;
 }
 
 // What a dataset depends on: a manifest written with other settings cannot be resumed.
@@ -150,12 +187,14 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
                     ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--seconds-per-object", options.secondsPerObject,
                   "Plan each object for this long instead (not reproducible: depends on speed)")
-      ->excludes(steps);
+      ->excludes(steps)
+      ->check(positiveFinite());
   cmd->add_flag("--validate", options.validate,
                 "Label each grasp physically (graspkit validate: 6 directions)");
   cmd->add_option("--validate-seconds", options.validateSeconds,
                   "--validate: simulated seconds per direction")
-      ->default_val(2.0);
+      ->default_val(2.0)
+      ->check(positiveFinite());
   cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
       ->check(seedNumber())
       ->default_val(1);
@@ -169,18 +208,6 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
 }
 
 namespace {
-
-// Whether a process still runs: a zombie (killed, not yet reaped by a container's init that may
-// never reap it) does not.
-bool processRuns(pid_t pid) {
-  if (pid <= 0) return false;
-  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
-  if (!stat) return ::kill(pid, 0) == 0 || errno != ESRCH;
-  std::string line;
-  std::getline(stat, line);
-  const auto close = line.rfind(')');  // the state follows the command name in parentheses
-  return close == std::string::npos || close + 2 >= line.size() || line[close + 2] != 'Z';
-}
 
 // Temporaries a killed run left behind (".NAME.h5.PID.tmp" whose process is gone).
 void removeStaleTemporaries(const fs::path& folder) {
@@ -205,7 +232,7 @@ class BatchRun {
       : options_(options),
         quiet_(quiet),
         shard_(shardOf(options.shard)),
-        files_(objectFiles(options.objects)),
+        files_(objectFiles(utf8Checked(options).objects)),
         names_(objectNames(files_)) {}
 
   const fs::path& file(std::size_t i) const { return files_[i]; }

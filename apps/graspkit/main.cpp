@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <set>
 #include <string>
@@ -17,6 +18,7 @@
 #include "graspkit/error.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/version.hpp"
+#include "terminal_text.hpp"
 #include "warning_reporter.hpp"
 
 namespace {
@@ -82,6 +84,11 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("batch")) return runBatch(o.batch, quiet, std::cout);
   } catch (const graspkit::Error& e) {
     std::cerr << "graspkit: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // The file system refused something (a loop of symbolic links, no permission): the user's
+    // setup, not a bug. Readers turn the ones they expect into located errors first.
+    std::cerr << "graspkit: error: " << e.path1().string() << ": " << e.code().message() << "\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "graspkit: internal error: " << e.what() << "\n";
@@ -152,9 +159,14 @@ int main(int argc, char** argv) {
       {.quiet = quiet, .silenced = silencedKinds(no_warn), .shownRepeats = verbose ? 0 : 3},
       std::cerr);
   graspkit::setWarningHandler([&warnings](const graspkit::Warning& w) { warnings.report(w); });
-  const int status = runCommand(app, options, quiet, verbose);
-  graspkit::setWarningHandler({});
-  warnings.summarize();
+  int status = 0;
+  {
+    const bool scripted = app.got_subcommand("run") || app.got_subcommand("test");
+    const graspkit::cli::TerminalSafeStreams safe_streams(!scripted);
+    status = runCommand(app, options, quiet, verbose);
+    graspkit::setWarningHandler({});
+    warnings.summarize();
+  }
   // Output that never reached its reader (a full disk, a closed pipe) is a failure, not a 0.
   std::cout.flush();
   if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {

@@ -3,7 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <charconv>
 #include <random>
+#include <string_view>
 
 #include "commands.hpp"
 #include "graspkit/error.hpp"
@@ -12,6 +16,7 @@
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/material.hpp"
 #include "graspkit/object_generator.hpp"
+#include "process_runs.hpp"
 
 namespace graspkit::cli {
 namespace {
@@ -41,13 +46,31 @@ ObjectGeneratorOptions generatorOptions(const ObjectsOptions& options) {
   return generator;
 }
 
-// A folder beside the targets, removed however the command ends.
+constexpr std::string_view kStagingPrefix = ".objects-staging-";
+
+// A folder beside the targets, removed however the command ends; one that a killed run left
+// (".objects-staging-PID-RANDOM" whose process is gone) is removed by the next run.
 struct StagingFolder {
   fs::path path;
   explicit StagingFolder(const fs::path& out) {
+    removeStale(out);
     std::random_device device;
-    path = out / fmt::format(".objects-staging-{:08x}", device());
+    path = out / fmt::format("{}{}-{:08x}", kStagingPrefix, ::getpid(), device());
     createOutputFolder(path);
+  }
+  static void removeStale(const fs::path& out) {
+    std::error_code missing;
+    for (const auto& entry : fs::directory_iterator(out, missing)) {
+      const std::string name = entry.path().filename().string();
+      if (!name.starts_with(kStagingPrefix)) continue;
+      const std::string rest = name.substr(kStagingPrefix.size());
+      pid_t pid = 0;
+      const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
+      if (error != std::errc() || end == rest.data() + rest.size() || *end != '-') continue;
+      std::error_code ignored;
+      if (!processRuns(pid) && entry.is_directory(ignored) && !entry.is_symlink(ignored))
+        fs::remove_all(entry.path(), ignored);
+    }
   }
   ~StagingFolder() {
     std::error_code ignored;

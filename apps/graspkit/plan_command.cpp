@@ -253,8 +253,10 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
       "Steps in total, every stage included (default 40000: GraspIt!'s search length)");
   cmd->add_option("--seconds", options.seconds,
                   "Plan for this long (every stage included) instead of a step count")
-      ->excludes(steps);
-  cmd->add_option("--threads", options.threads, "Search threads (default: every core)");
+      ->excludes(steps)
+      ->check(positiveFinite());
+  cmd->add_option("--threads", options.threads, "Search threads (default: every core)")
+      ->check(CLI::Range(1, 4096));
   cmd->add_option("--seed", options.seed, "Random seed")->check(seedNumber())->default_val(1);
   cmd->add_option("--top", options.top, "How many grasps to keep (the best list's size)")
       ->default_val(20)
@@ -264,7 +266,8 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
                 "directions, 2 s each)");
   cmd->add_option("--validate-seconds", options.validateSeconds,
                   "--validate: simulated seconds per direction")
-      ->default_val(2.0);
+      ->default_val(2.0)
+      ->check(positiveFinite());
   cmd->add_flag("--json", options.json, "Print one JSON object");
   cmd->add_option("--out", options.out,
                   "Write the JSON here, and beside it one world file per grasp (the hand "

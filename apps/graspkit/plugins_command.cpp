@@ -83,7 +83,7 @@ void addPluginsCommand(CLI::App& app, PluginsOptions& options) {
 
 int runPlugins(const PluginsOptions& options, std::ostream& out) {
   Registry& registry = Registry::global();
-  const std::vector<PluginInfo> plugins = registry.plugins().loadAll();
+  const std::vector<PluginInfo> plugins = registry.plugins().survey();
   if (options.json)
     out << pluginsJson(registry, plugins).dump(2) << "\n";
   else

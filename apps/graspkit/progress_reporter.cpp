@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "terminal_text.hpp"
+
 namespace graspkit::cli {
 namespace {
 
@@ -58,7 +60,8 @@ void ProgressReporter::clear() {
 }
 
 void ProgressReporter::show(double fraction, std::string_view text, bool last) {
-  const std::string line = progressLine(fraction, text);
+  // The text may hold an object's name: printed with fputs, it bypasses the safe std::cerr.
+  const std::string line = terminalSafe(progressLine(fraction, text));
   if (settings_.terminal) {
     std::fprintf(stderr, "\r\033[K%s%s", line.c_str(), last ? "\n" : "");
     line_drawn_ = !last;

@@ -57,11 +57,15 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
       ->required()
       ->check(existingFile());
   addLoadFlags(*cmd, options.load);
-  cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)");
-  cmd->add_option("--top", options.top, "Plans: the first N grasps");
+  // 0 would mean "not given" below: the ranges start at 1, as export's and render's do.
+  cmd->add_option("--grasp", options.grasp, "Plans: only grasp N (1-based)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--top", options.top, "Plans: the first N grasps")->check(CLI::Range(1, 1000000));
   cmd->add_option("--seconds", options.seconds, "Simulated seconds per direction")
-      ->default_val(2.0);
-  cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)");
+      ->default_val(2.0)
+      ->check(positiveFinite());
+  cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)")
+      ->check(CLI::Range(1, 4096));
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 

@@ -41,9 +41,10 @@ void pushPluginInfo(lua_State* L, const PluginInfo& info) {
   lua_setfield(L, -2, "provides");
 }
 
-// Every plugin on the search path (loading them), failures included with their reason.
+// Every plugin on the search path (as the probe found it, none loaded into this process),
+// failures included with their reason.
 int plugins(lua_State* L) {
-  const std::vector<PluginInfo> infos = Registry::global().plugins().loadAll();
+  const std::vector<PluginInfo> infos = Registry::global().plugins().survey();
   lua_createtable(L, static_cast<int>(infos.size()), 0);
   for (std::size_t i = 0; i < infos.size(); ++i) {
     pushPluginInfo(L, infos[i]);

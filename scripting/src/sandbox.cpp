@@ -97,13 +97,14 @@ std::string listFolders(const std::vector<fs::path>& folders) {
   return list.empty() ? "none" : list;
 }
 
-// "" when `file` is what it looks like; otherwise where it really leads.
+// "" when `file` is what it looks like; otherwise that a symbolic link takes it elsewhere. The
+// target itself is never named: it lies outside the script's folders, where a script may not look.
 std::string resolvesTo(const fs::path& file) {
   std::error_code ec;
   const fs::path plain = fs::absolute(file, ec).lexically_normal();
   const fs::path real = resolved(file);
   if (real.empty()) return "; the path is a loop of symbolic links";
-  return real == plain ? "" : fmt::format("; the path leads to {}", real.string());
+  return real == plain ? "" : "; a symbolic link on the path leads outside";
 }
 
 }  // namespace

@@ -119,8 +119,10 @@ fs::path ScriptContext::inputPath(const std::string& name) const {
     for (const fs::path& root : modelRoots) candidates.push_back(root / file);
     file = candidates.front();
     for (const fs::path& candidate : candidates) {
+      // A place the script may not read is passed over unlooked-at: whether a file exists
+      // outside its folders is not the script's to learn.
       std::error_code ec;
-      if (fs::exists(candidate, ec)) {
+      if (paths.mayRead(candidate) && fs::exists(candidate, ec)) {
         file = candidate;
         break;
       }

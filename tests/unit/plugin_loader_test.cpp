@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -26,6 +27,7 @@ const fs::path kGood = kCorpus / "good";
 const fs::path kBroken = kCorpus / "broken";
 const fs::path kThrowing = kCorpus / "throwing";
 const fs::path kDeadly = kCorpus / "deadly";
+const fs::path kUnruly = kCorpus / "unruly";
 
 // The error message of loading `file` into a fresh registry whose path holds only the good plugin.
 std::string loadError(const std::string& file) {
@@ -333,6 +335,49 @@ TEST(PluginProbe, OnlyThePluginProvidingTheNameIsLoaded) {
   EXPECT_FALSE(registry.contains(FactoryKind::QualityMeasure, "corpus_throws_std"));
   EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::QualityMeasure, "corpus_throws_std"));
   EXPECT_EQ(registry.plugins().loaded().size(), 2u);
+}
+
+// Listing plugins loads none into the process: a plugin that behaves in the probe and crashes
+// when loaded again (it leaves a marker the first time) is listed, and the host lives on. The
+// listing finds the clashes a load would: the broken folder's duplicate_type provides the good
+// plugin's robot type.
+TEST(PluginProbe, SurveyListsWithoutLoading) {
+  const fs::path marker = test::scratchDir() / "second_load_marker";
+  fs::remove(marker);
+  setenv("GRASPKIT_TEST_MARKER", marker.c_str(), 1);
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kGood, kUnruly, kBroken});
+  const std::vector<PluginInfo> listed = registry.plugins().survey();
+  unsetenv("GRASPKIT_TEST_MARKER");
+  EXPECT_TRUE(fs::exists(marker)) << "the probe's child did not load the plugin";
+  EXPECT_TRUE(registry.plugins().loaded().empty());
+  std::map<std::string, const PluginInfo*> by_file;
+  for (const PluginInfo& info : listed) by_file[info.file.filename().string()] = &info;
+  ASSERT_TRUE(by_file.count("second_load_crashes.so"));
+  EXPECT_TRUE(by_file["second_load_crashes.so"]->loaded)
+      << by_file["second_load_crashes.so"]->error;
+  ASSERT_TRUE(by_file.count("good.so") && by_file.count("duplicate_type.so"));
+  EXPECT_TRUE(by_file["good.so"]->loaded);
+  EXPECT_FALSE(by_file["duplicate_type.so"]->loaded);
+  EXPECT_NE(by_file["duplicate_type.so"]->error.find("already provided by plugin 'corpus_good'"),
+            std::string::npos)
+      << by_file["duplicate_type.so"]->error;
+  EXPECT_FALSE(by_file["wrong_abi.so"]->loaded);
+}
+
+// What a plugin prints while it loads never reaches standard output (the probe's child throws it
+// away; an in-process load sends it to standard error), so --json output stays JSON.
+TEST(PluginProbe, PluginOutputStaysOffStandardOutput) {
+  Registry registry;
+  registry.plugins().setSearchPath(std::vector<fs::path>{kUnruly});
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  const bool loaded = registry.plugins().loadProviding(FactoryKind::QualityMeasure, "corpus_noisy");
+  const std::string out = testing::internal::GetCapturedStdout();
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(loaded);
+  EXPECT_EQ(out, "");
+  EXPECT_NE(err.find("NOISE from the register function"), std::string::npos) << err;
 }
 
 // With the probe off (GRASPKIT_PLUGIN_PROBE=0), plugins load in place, in path order.

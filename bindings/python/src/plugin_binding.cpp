@@ -1,6 +1,8 @@
 // Plugins and what the registry holds: graspkit.plugins(), load_plugin() and the names of robot
 // types, quality measures, search energies and planners.
 
+#include <algorithm>
+
 #include "graspkit/plugin_loader.hpp"
 #include "graspkit/registry.hpp"
 #include "python_support.hpp"
@@ -22,10 +24,17 @@ py::dict toDict(const PluginInfo& info) {
   return d;
 }
 
+// The registry's names and those the plugins on the search path would add, none of them loaded.
 std::vector<std::string> names(FactoryKind kind) {
-  Registry::global().plugins().loadAll();  // plugins provide names too
+  std::vector<std::string> list = Registry::global().names(kind);
+  for (const PluginInfo& info : Registry::global().plugins().survey())
+    for (const auto& [provided, name] : info.provides)
+      if (info.loaded && provided == kind &&
+          std::find(list.begin(), list.end(), name) == list.end())
+        list.push_back(name);
   flushWarnings();
-  return Registry::global().names(kind);
+  std::sort(list.begin(), list.end());
+  return list;
 }
 
 }  // namespace
@@ -36,12 +45,13 @@ void bindPlugins(py::module_& m) {
       [] {
         return withWarnings([] {
           py::list out;
-          for (const PluginInfo& info : Registry::global().plugins().loadAll())
+          for (const PluginInfo& info : Registry::global().plugins().survey())
             out.append(toDict(info));
           return out;
         });
       },
-      "Every plugin on the search path ($GRASPKIT_PLUGIN_PATH, then beside libgraspkit), loaded: "
+      "Every plugin on the search path ($GRASPKIT_PLUGIN_PATH, then beside libgraspkit), as a "
+      "child process found it (none is loaded into this one): "
       "[{'file', 'name', 'version', 'loaded', 'error', 'provides': [(kind, name), ...]}].");
   m.def(
       "load_plugin",

@@ -73,6 +73,11 @@ class PluginLoader {
 
   // Loads every plugin on the search path; returns one entry per plugin file found, loaded or not.
   std::vector<PluginInfo> loadAll();
+  // Every plugin on the search path, one entry per file, as far as can be told without loading
+  // any into this process: the child's report of each (a plugin already loaded here as it is),
+  // with the name clashes loading would find. A plugin that behaves in the child and crashes
+  // when loaded a second time cannot take a listing down. Without the child, loadAll().
+  std::vector<PluginInfo> survey();
 
   std::vector<PluginInfo> loaded() const;
   std::vector<PluginInfo> failures() const;

@@ -74,7 +74,10 @@ bool yieldsNoTriangles(const SoNode& node) {
                       SoVRMLVertexPoint::getClassTypeId(), SoVRMLIndexedLine::getClassTypeId()});
 }
 
-constexpr std::int64_t kMaxExtrusionQuads = 5'000'000;
+// An extrusion's surface grows as the product of two lists that the file holds end to end: 2000
+// points each (45 KB) would make 8 million triangles and a minute's work. 250,000 quadrilaterals
+// (500 by 500) stay within a few seconds and far above any hand or object model's need.
+constexpr std::int64_t kMaxExtrusionQuads = 250'000;
 
 // Shapes tessellated from their own fields only, which Coin handles for any values.
 bool isParametric(const SoNode& node) {

@@ -7,6 +7,7 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/log.hpp"
 
 namespace graspkit {
@@ -21,16 +22,10 @@ std::string lowerCaseExtension(const std::filesystem::path& path) {
 }
 
 // A directory or a dangling path fails here with one clear message instead of a
-// format-specific one from deep inside Coin or assimp.
+// format-specific one from deep inside Coin or assimp. The read gate's check asks the read guard
+// before it looks at the file, so a refused path tells nothing, not even whether it exists.
 void requireRegularFile(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    throw Error(detail::locationIn(path.string()), "file not found");
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw Error(detail::locationIn(path.string()), "not a regular file");
-  }
+  checkInputFile(path);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 
 namespace graspkit::detail {
 namespace {
@@ -35,12 +36,13 @@ std::optional<fs::path> resolveInclude(const std::string& name,
   const fs::path real_root = fs::weakly_canonical(root, ec);
   for (const fs::path& folder : folders) {
     const fs::path candidate = folder / relative;
-    if (!fs::exists(candidate, ec)) continue;
+    if (!inputFileFound(candidate)) continue;
     const fs::path real = fs::weakly_canonical(candidate, ec);
+    // Where it leads is not named: it may lie where a sandboxed script may not look.
     if (ec || !isWithin(real, real_root)) {
-      throw Error(where, fmt::format("File node names '{}', which is {}, outside the model's "
+      throw Error(where, fmt::format("File node names '{}', which leads outside the model's "
                                      "folder {}",
-                                     name, real.string(), real_root.string()));
+                                     name, real_root.string()));
     }
     return candidate;
   }

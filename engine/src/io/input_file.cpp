@@ -43,6 +43,9 @@ void checkInputFile(const fs::path& file) {
   if (const ReadGuard& guard = threadGuard()) guard(file);
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
+  // A loop of symbolic links or a folder without permission is not "not found": say which.
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw Error(SourceLocation{file.string()}, fmt::format("cannot be read: {}", ec.message()));
   if (!fs::exists(status)) throw Error(SourceLocation{file.string()}, "file not found");
   if (!fs::is_regular_file(status)) {
     throw Error(SourceLocation{file.string()},
@@ -54,6 +57,24 @@ void checkInputFile(const fs::path& file) {
                 fmt::format("the file is {} bytes, more than the {} bytes an input file may hold",
                             size, kMaxInputFileBytes));
   }
+}
+
+bool inputFileRefused(const fs::path& file) {
+  if (const ReadGuard& guard = threadGuard()) {
+    try {
+      guard(file);
+    } catch (const Error&) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool inputFileFound(const fs::path& file) {
+  if (holdsNul(file) || inputFileRefused(file)) return false;  // never looked at
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  return fs::exists(status) || (ec && ec != std::errc::no_such_file_or_directory);
 }
 
 std::string readInputFile(const fs::path& file) {

@@ -16,6 +16,7 @@
 // Units: metres become millimetres, kilograms grams.
 
 #include "graspkit/io/mjcf_file.hpp"
+#include "graspkit/io/input_file.hpp"
 
 #include <fmt/format.h>
 #include <tinyxml2.h>
@@ -50,6 +51,14 @@ namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
 namespace {
+
+// The path include cycles are judged by; one that cannot be resolved (a loop of symbolic links)
+// stays as given, and reading it then names the reason.
+fs::path canonicalOrAsGiven(const fs::path& file) {
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(file, ec);
+  return ec ? file : canonical;
+}
 
 constexpr double kMetre = 1000.0;     // mm
 constexpr double kKilogram = 1000.0;  // g
@@ -141,7 +150,7 @@ class MjcfReader {
     if (std::string_view(main.root().Name()) != "mujoco")
       throw Error(xml::at(file_, main.root()), "the root element of an MJCF file must be <mujoco>");
     std::vector<Source> top;
-    std::vector<fs::path> stack{fs::weakly_canonical(file_)};
+    std::vector<fs::path> stack{canonicalOrAsGiven(file_)};
     expand(main.root(), main.file(), top, stack);
     for (const Source& s : top)
       if (name(s) == "compiler") readCompiler(s);
@@ -190,14 +199,15 @@ class MjcfReader {
       const char* name = e->Attribute("file");
       if (!name) throw Error(xml::at(file, *e), "<include> needs a file attribute");
       const fs::path included = file_.parent_path() / name;
-      const fs::path canonical = fs::weakly_canonical(included);
+      const fs::path canonical = canonicalOrAsGiven(included);
       if (std::find(stack.begin(), stack.end(), canonical) != stack.end())
         throw Error(xml::at(file, *e), fmt::format("include cycle: '{}' includes itself", name));
       if (stack.size() >= kMaxIncludeDepth)
         throw Error(xml::at(file, *e), "includes nest deeper than 16 files");
-      std::error_code ec;
-      if (!fs::is_regular_file(included, ec))
-        throw Error(xml::at(file, *e), fmt::format("included file '{}' not found", name));
+      xml::locatedAt(file, *e, [&] {
+        checkInputFile(included);
+        return 0;
+      });
       const xml::Document& doc = document(included);
       if (std::string_view(doc.root().Name()) != "mujoco")
         throw Error(xml::at(included, doc.root()),
@@ -211,7 +221,7 @@ class MjcfReader {
   // The children of a source element, includes expanded.
   std::vector<Source> childrenOf(const Source& s) {
     std::vector<Source> out;
-    std::vector<fs::path> stack{fs::weakly_canonical(*s.file)};
+    std::vector<fs::path> stack{canonicalOrAsGiven(*s.file)};
     expand(*s.element, *s.file, out, stack);
     return out;
   }

@@ -17,6 +17,7 @@
 #include "geometry/primitive_meshes.hpp"
 #include "graspkit/closing_direction.hpp"
 #include "graspkit/error.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mass_properties.hpp"
@@ -632,7 +633,7 @@ class UrdfReader {
       fs::path beside = file_;
       beside.replace_extension(".srdf");
       std::error_code ec;
-      if (!fs::is_regular_file(beside, ec)) return;
+      if (!inputFileFound(beside) || !fs::is_regular_file(beside, ec)) return;
       srdf = beside;
     }
     const xml::Document doc(srdf);
@@ -808,7 +809,7 @@ class UrdfReader {
     }
     std::error_code ec;
     for (const fs::path& candidate : candidates)
-      if (fs::is_regular_file(candidate, ec)) return candidate;
+      if (inputFileFound(candidate) && fs::is_regular_file(candidate, ec)) return candidate;
     throw Error(xml::at(file_, where),
                 fmt::format("mesh '{}': package '{}' not found (add its folder with "
                             "--package-path)",
@@ -816,10 +817,11 @@ class UrdfReader {
   }
 
   fs::path existing(const XMLElement& where, const fs::path& path) const {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-      throw Error(xml::at(file_, where), fmt::format("mesh '{}' does not exist", path.string()));
-    return path;
+    // The read gate's check, so that a refused mesh tells nothing, not even whether it exists.
+    return xml::locatedAt(file_, where, [&] {
+      checkInputFile(path);
+      return path;
+    });
   }
 
   fs::path file_;

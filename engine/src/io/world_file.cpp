@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "graspkit/io/body_file.hpp"
+#include "graspkit/io/input_file.hpp"
 #include "graspkit/io/output_file.hpp"
 #include "graspkit/io/robot_file.hpp"
 #include "graspkit/log.hpp"
@@ -55,13 +57,15 @@ class WorldReader {
   fs::path resolve(const XMLElement& element) {
     const std::string name = xml::text(element);
     if (name.empty()) throw Error(xml::at(file_, element), "empty file name");
-    if (fs::path(name).is_absolute()) {
-      if (fs::exists(name)) return name;
-    } else {
-      for (const fs::path& root : roots_) {
-        if (fs::exists(root / name)) return root / name;
-      }
+    // One place to look: the read gives the reason it fails (refused, missing, a loop).
+    if (fs::path(name).is_absolute()) return name;
+    std::optional<fs::path> refused;
+    for (const fs::path& root : roots_) {
+      if (inputFileFound(root / name)) return root / name;
+      if (!refused && inputFileRefused(root / name)) refused = root / name;
     }
+    // Found nowhere it may be read: the read of the first refused place gives the refusal.
+    if (refused) return *refused;
     std::string tried;
     for (const fs::path& root : roots_) tried += "\n  " + root.string();
     throw Error(

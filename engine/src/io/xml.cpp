@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/io/input_file.hpp"
+#include "graspkit/io/utf8.hpp"
 #include "graspkit/log.hpp"
 #include "io/xml_attribute_count.hpp"
 
@@ -14,6 +15,13 @@ namespace graspkit::xml {
 
 Document::Document(const std::filesystem::path& file) : file_(file) {
   const std::string text = readInputFile(file);
+  // tinyxml2 takes any bytes; a name that is not UTF-8 could not be written back or printed.
+  if (const auto bad = firstInvalidUtf8(text)) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(*bad), '\n');
+    throw Error(SourceLocation{file.string(), static_cast<int>(line)},
+                fmt::format("byte {} (0x{:02X}) is not UTF-8: XML files are read as UTF-8 text",
+                            *bad + 1, static_cast<unsigned char>(text[*bad])));
+  }
   checkAttributeCounts(file, text);
   if (doc_.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     const int line = doc_.ErrorLineNum();

@@ -1,8 +1,10 @@
 #include "graspkit/plugin_loader.hpp"
 
 #include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -100,11 +102,42 @@ std::vector<fs::path> PluginLoader::candidateFiles() const {
   return files;
 }
 
+namespace {
+
+// While a plugin loads, what it prints goes to standard error: standard output belongs to the
+// host (graspkit's --json output, a pipeline's data), and a plugin's constructor must not mix
+// into it.
+class StdoutToStderr {
+ public:
+  StdoutToStderr() {
+    std::fflush(stdout);
+    saved_ = ::dup(STDOUT_FILENO);
+    if (saved_ >= 0) ::dup2(STDERR_FILENO, STDOUT_FILENO);
+  }
+  ~StdoutToStderr() {
+    if (saved_ < 0) return;
+    std::fflush(stdout);
+    ::dup2(saved_, STDOUT_FILENO);
+    ::close(saved_);
+  }
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+}  // namespace
+
 PluginInfo PluginLoader::tryLoad(const fs::path& file) {
   std::vector<PluginInfo> loaded;
   for (const auto& [path, info] : probed_)
     if (info.loaded) loaded.push_back(info);
-  return plugin::commitPlugin(registry_, plugin::openPlugin(file), loaded);
+  plugin::OpenedPlugin opened = [&] {
+    const StdoutToStderr redirect;
+    return plugin::openPlugin(file);
+  }();
+  return plugin::commitPlugin(registry_, std::move(opened), loaded);
 }
 
 PluginProbe PluginLoader::probe() const {
@@ -199,6 +232,56 @@ std::vector<PluginInfo> PluginLoader::loadAll() {
   probeUnseen(files);
   std::vector<PluginInfo> found;
   for (const fs::path& file : files) found.push_back(settle(file));
+  return found;
+}
+
+std::vector<PluginInfo> PluginLoader::survey() {
+  std::lock_guard lock(registry_.mutex_);
+  const std::vector<fs::path> files = candidateFiles();
+  probeUnseen(files);
+  if (!probe().inChildProcess) return loadAll();
+  std::vector<PluginInfo> found;
+  std::map<std::string, fs::path> plugin_names;  // of the plugins that would load, in path order
+  std::map<std::pair<FactoryKind, std::string>, std::string> factories;  // and what they provide
+  for (const auto& [path, info] : probed_)
+    if (info.loaded) plugin_names.emplace(info.name, info.file);
+  for (const fs::path& file : files) {
+    const fs::path key = keyOf(file);
+    if (const auto it = probed_.find(key); it != probed_.end()) {
+      found.push_back(it->second);
+      continue;
+    }
+    PluginInfo info = probes_.at(key);
+    // The checks loading would make (plugin_file.cpp, commitPlugin), from the probe's report.
+    auto refuse = [&](std::string why) {
+      info.loaded = false;
+      info.error = std::move(why);
+      info.provides.clear();
+    };
+    if (info.loaded) {
+      if (const auto other = plugin_names.find(info.name); other != plugin_names.end())
+        refuse(fmt::format("a plugin named '{}' is already loaded from {}", info.name,
+                           other->second.string()));
+    }
+    for (const auto& item : info.loaded ? info.provides : decltype(info.provides){}) {
+      std::string owner;
+      if (const auto here = registry_.provenance(item.first, item.second))
+        owner = here->describe() + (here->file.empty() ? "" : " (" + here->file.string() + ")");
+      else if (const auto other = factories.find(item); other != factories.end())
+        owner = other->second;
+      if (!owner.empty()) {
+        refuse(fmt::format("provides {} '{}', already provided by {}", toString(item.first),
+                           item.second, owner));
+        break;
+      }
+    }
+    if (info.loaded) {
+      plugin_names.emplace(info.name, info.file);
+      for (const auto& item : info.provides)
+        factories.emplace(item, fmt::format("plugin '{}' ({})", info.name, info.file.string()));
+    }
+    found.push_back(std::move(info));
+  }
   return found;
 }
 

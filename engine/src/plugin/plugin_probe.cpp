@@ -45,6 +45,12 @@ void writeAll(int fd, std::string_view text) {
 // In the child: open each file from `first` on, reporting as it goes, then end the process
 // without running the host's exit handlers or destructors.
 [[noreturn]] void runChild(int fd, const std::vector<fs::path>& files, std::size_t first) {
+  // What a plugin prints while it loads here must not reach the host's standard output, which
+  // may be carrying JSON: it is thrown away (its standard error is kept, for its crash reports).
+  if (const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC); null >= 0) {
+    ::dup2(null, STDOUT_FILENO);
+    ::close(null);
+  }
   for (std::size_t i = first; i < files.size(); ++i) {
     writeAll(fd, fmt::format("begin\t{}\n", i));
     const OpenedPlugin opened = openPlugin(files[i]);

@@ -43,6 +43,16 @@ bool holdsNul(const std::filesystem::path& file);
 // The checks above, without reading. Throws graspkit::Error naming the file.
 void checkInputFile(const std::filesystem::path& file);
 
+// For a reader that looks for a file in several places: whether `file` is there, asking the read
+// guard first. A path the guard refuses is never looked at and counts as not there, so that a
+// search tells nothing about files outside a script's folders. A path whose status cannot be read
+// (a loop of symbolic links, no permission) counts as there, so that reading it names the reason.
+// A reader with one place to look calls checkInputFile() instead, which gives the refusal.
+bool inputFileFound(const std::filesystem::path& file);
+
+// Whether the thread's read guard refuses `file` (without looking at the file).
+bool inputFileRefused(const std::filesystem::path& file);
+
 // The whole content of `file`, after checkInputFile(). Throws graspkit::Error naming the file.
 std::string readInputFile(const std::filesystem::path& file);
 
