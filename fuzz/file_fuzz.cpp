@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,7 +18,10 @@
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/body_file.hpp"
+#include "graspkit/io/grasp_dataset_file.hpp"
+#include "graspkit/io/mjcf_file.hpp"
 #include "graspkit/io/robot_file.hpp"
+#include "graspkit/io/urdf_file.hpp"
 #include "graspkit/io/world_file.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/mesh_loader.hpp"
@@ -69,6 +73,41 @@ void read(const fs::path& file) {
     options.useEnvironment = false;
     options.genericRobotFallback = true;
     checkWorld(graspkit::loadWorldFile(file, options));
+  } else if (reader == "dataset") {
+    // Whatever loads must save and load back to the same grasps.
+    const graspkit::GraspDataset dataset = graspkit::loadGraspDataset(file);
+    const fs::path again = scratchFolder() / "again.h5";
+    graspkit::saveGraspDataset(dataset, again);
+    const graspkit::GraspDataset back = graspkit::loadGraspDataset(again);
+    if (back.grasps.size() != dataset.grasps.size() || back.objectName != dataset.objectName)
+      std::abort();
+  } else if (reader == "export") {
+    // A robot that loads is written as URDF, MJCF and GraspIt! XML, and each must load back
+    // with its DOFs: an exporter may refuse a robot (an Error), never write what cannot be read.
+    graspkit::LoadOptions options;
+    options.useEnvironment = false;
+    options.genericRobotFallback = true;
+    const auto robot = graspkit::loadRobotFile(file, options);
+    using Save = fs::path (*)(const graspkit::RobotModel&, const fs::path&);
+    const Save savers[] = {graspkit::saveUrdf, graspkit::saveMjcf, graspkit::saveRobotFile};
+    for (const Save save : savers) {
+      const fs::path folder = scratchFolder() / "export";
+      std::error_code ignored;
+      fs::remove_all(folder, ignored);
+      fs::path written;
+      try {
+        written = save(*robot, folder);
+      } catch (const graspkit::Error&) {
+        continue;
+      }
+      try {
+        const auto back = graspkit::loadRobotFile(written, options);
+        if (back->dofs.size() != robot->dofs.size()) std::abort();
+      } catch (const graspkit::Error& e) {
+        std::fprintf(stderr, "an exported robot does not load back: %s\n", e.what());
+        std::abort();
+      }
+    }
   } else if (reader == "eigengrasp") {
     graspkit::loadEigengraspFile(file, 4);
   } else if (reader == "virtual_contact") {

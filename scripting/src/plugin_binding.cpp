@@ -83,12 +83,12 @@ int loadPlugin(lua_State* L) {
 }
 
 int robotTypes(lua_State* L) {
-  pushStringList(L, Registry::global().names(FactoryKind::RobotType));
+  pushStringList(L, Registry::global().plugins().availableNames(FactoryKind::RobotType));
   return 1;
 }
 
 int qualityMeasures(lua_State* L) {
-  pushStringList(L, Registry::global().names(FactoryKind::QualityMeasure));
+  pushStringList(L, Registry::global().plugins().availableNames(FactoryKind::QualityMeasure));
   return 1;
 }
 

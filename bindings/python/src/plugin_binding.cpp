@@ -1,8 +1,6 @@
 // Plugins and what the registry holds: graspkit.plugins(), load_plugin() and the names of robot
 // types, quality measures, search energies and planners.
 
-#include <algorithm>
-
 #include "graspkit/plugin_loader.hpp"
 #include "graspkit/registry.hpp"
 #include "python_support.hpp"
@@ -26,14 +24,8 @@ py::dict toDict(const PluginInfo& info) {
 
 // The registry's names and those the plugins on the search path would add, none of them loaded.
 std::vector<std::string> names(FactoryKind kind) {
-  std::vector<std::string> list = Registry::global().names(kind);
-  for (const PluginInfo& info : Registry::global().plugins().survey())
-    for (const auto& [provided, name] : info.provides)
-      if (info.loaded && provided == kind &&
-          std::find(list.begin(), list.end(), name) == list.end())
-        list.push_back(name);
+  std::vector<std::string> list = Registry::global().plugins().availableNames(kind);
   flushWarnings();
-  std::sort(list.begin(), list.end());
   return list;
 }
 

@@ -78,6 +78,9 @@ class PluginLoader {
   // with the name clashes loading would find. A plugin that behaves in the child and crashes
   // when loaded a second time cannot take a listing down. Without the child, loadAll().
   std::vector<PluginInfo> survey();
+  // The registry's names of `kind` and those the plugins on the search path would add (as
+  // survey() finds them), sorted: what a file or a script may name.
+  std::vector<std::string> availableNames(FactoryKind kind);
 
   std::vector<PluginInfo> loaded() const;
   std::vector<PluginInfo> failures() const;

@@ -285,6 +285,16 @@ std::vector<PluginInfo> PluginLoader::survey() {
   return found;
 }
 
+std::vector<std::string> PluginLoader::availableNames(FactoryKind kind) {
+  std::lock_guard lock(registry_.mutex_);
+  std::set<std::string> names;
+  for (const std::string& name : registry_.names(kind)) names.insert(name);
+  for (const PluginInfo& info : survey())
+    for (const auto& [provided, name] : info.provides)
+      if (info.loaded && provided == kind) names.insert(name);
+  return {names.begin(), names.end()};
+}
+
 std::vector<PluginInfo> PluginLoader::loaded() const {
   std::lock_guard lock(registry_.mutex_);
   std::vector<PluginInfo> list;
