@@ -41,6 +41,8 @@ Transform parsePose(const std::string& text) {
   }
   const std::optional<Quaternion> q = unitQuaternion(v[3], v[4], v[5], v[6]);
   if (!q) throw Error("--pose: the quaternion is zero or not finite: it names no rotation");
+  if (const char* why = translationProblem(Vector3(v[0], v[1], v[2])))
+    throw Error(fmt::format("--pose: the translation {}", why));
   return makeTransform(Vector3(v[0], v[1], v[2]), *q);
 }
 

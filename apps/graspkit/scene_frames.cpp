@@ -42,7 +42,8 @@ Transform poseFrom(const json& pose) {
   const auto q = pose.at("quaternion").get<std::vector<double>>();
   if (t.size() != 3 || q.size() != 4) throw Error("a pose needs 3 + 4 numbers");
   const Vector3 translation(t[0], t[1], t[2]);
-  if (!translation.allFinite()) throw Error("a pose's translation is not finite");
+  if (const char* why = translationProblem(translation))
+    throw Error(fmt::format("a pose's translation {}", why));
   const std::optional<Quaternion> rotation = unitQuaternion(q[0], q[1], q[2], q[3]);
   if (!rotation) throw Error("a pose's quaternion is zero or not finite: it names no rotation");
   return makeTransform(translation, *rotation);

@@ -194,6 +194,10 @@ Transform toPose(lua_State* L, int arg) {
   }
   if (rawField(L, arg, "translation") != LUA_TNIL) {
     translation = toFixedList<3>(L, lua_gettop(L), "translation {x, y, z}");
+    if (const char* why = translationProblem(translation)) {
+      lua_pop(L, 1);
+      throw ArgumentError(L, arg, std::string("the translation ") + why);
+    }
   }
   lua_pop(L, 1);
   if (rawField(L, arg, "quaternion") != LUA_TNIL) {

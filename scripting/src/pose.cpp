@@ -14,6 +14,8 @@ int pose(lua_State* L) {
   Vector3 translation = Vector3::Zero();
   Quaternion rotation = Quaternion::Identity();
   if (!isNone(L, 1)) translation = toVector3(L, 1);
+  if (const char* why = translationProblem(translation))
+    throw ArgumentError(L, 1, std::string("the translation ") + why);
   if (!isNone(L, 2)) {
     const std::vector<double> q = toNumberList(L, 2);
     if (q.size() != 4) throw ArgumentError(L, 2, "quaternion {w, x, y, z} expected");

@@ -8,6 +8,8 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -228,6 +230,31 @@ TEST(GraspDatasetHostile, NonFiniteValuesAndBrokenPosesAreRefused) {
     H5Dclose(set);
   });
   expectRefused(f, sheared, "/grasps/transforms");
+}
+
+// libhdf5 copies a global-heap object (a variable-length string) by the size its header gives;
+// the fuzz target found a file whose first string claims 16 MB of a 4 KiB heap, which made
+// libhdf5 read past its buffer. The heap is checked before libhdf5 sees the file.
+TEST(GraspDatasetHostile, AHeapObjectLargerThanItsHeapIsRefused) {
+  const fs::path file = test::scratchDir() / "heap.h5";
+  saveGraspDataset(oneGrasp(), file);
+  std::string bytes = readInputFile(file);
+  const std::size_t heap = bytes.find("GCOL");
+  ASSERT_NE(heap, std::string::npos) << "the saved file has no global heap to tamper with";
+  // The first object's size field: 16 bytes of collection header, then 8 into the object's.
+  const std::uint64_t claimed = 16'711'685;
+  std::memcpy(bytes.data() + heap + 16 + 8, &claimed, sizeof claimed);
+  const fs::path tampered = test::scratchDir() / "heap_tampered.h5";
+  std::ofstream(tampered, std::ios::binary) << bytes;
+  try {
+    loadGraspDataset(tampered);
+    FAIL() << "a heap object larger than its heap loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than its heap holds"), std::string::npos)
+        << e.what();
+  }
+  // The same bytes untouched load: the check refuses the lie, not the file.
+  EXPECT_EQ(loadGraspDataset(file).objectName, "cylinder");
 }
 
 TEST(GraspDatasetHostile, TheUntamperedFileStillLoadsInTheSandbox) {

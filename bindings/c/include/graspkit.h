@@ -365,8 +365,9 @@ GRASPKIT_C_API graspkit_status graspkit_run_script(const char* path,
 
 /* ---- Plugins -------------------------------------------------------------------------------- */
 
-/* Loads every plugin on the search path and counts them (loaded or failed); the list is then
- * read with graspkit_plugin_info. */
+/* Lists every plugin on the search path as the probe's child process found it (none is loaded
+ * into this process) and counts them (loadable or failed); the list is then read with
+ * graspkit_plugin_info. */
 GRASPKIT_C_API graspkit_status graspkit_plugins_scan(size_t* count);
 /* Loads one plugin file. */
 GRASPKIT_C_API graspkit_status graspkit_plugin_load(const char* path);

@@ -68,6 +68,8 @@ void copyString(std::string_view text, char* buffer, std::size_t capacity, std::
 Transform toTransform(const graspkit_pose& pose) {
   const Vector3 t(pose.translation[0], pose.translation[1], pose.translation[2]);
   if (!t.allFinite()) throw Error("the pose has a value that is not a finite number");
+  if (const char* why = translationProblem(t))
+    throw Error(fmt::format("the pose's translation {}", why));
   const std::optional<Quaternion> q =
       unitQuaternion(pose.rotation[0], pose.rotation[1], pose.rotation[2], pose.rotation[3]);
   if (!q) throw Error("the pose's quaternion is zero or not finite: it names no rotation");

@@ -27,7 +27,7 @@ extern "C" {
 graspkit_status graspkit_plugins_scan(size_t* count) {
   return guarded([&] {
     require(count, "count");
-    std::vector<PluginInfo> found = Registry::global().plugins().loadAll();
+    std::vector<PluginInfo> found = Registry::global().plugins().survey();
     std::lock_guard lock(scan_mutex);
     lastScan() = std::move(found);
     *count = lastScan().size();

@@ -27,6 +27,8 @@ Transform fromMatrix(const py::array_t<double, py::array::c_style | py::array::f
     throw py::value_error(
         fmt::format("pose: the upper-left 3x3 is not a rotation (|R^T R - I| = {:.3g})", off));
   // Through a unit quaternion, so that the rotation is orthonormal to the last bit.
+  if (const char* why = translationProblem(m.topRightCorner<3, 1>()))
+    throw py::value_error(std::string("pose: the translation ") + why);
   return makeTransform(m.topRightCorner<3, 1>(), Quaternion(rotation).normalized());
 }
 
@@ -36,6 +38,8 @@ Transform toTransform(const py::handle& pose) {
   if (py::isinstance<py::tuple>(pose) && py::len(pose) == 2) {
     const auto parts = pose.cast<py::tuple>();
     const Vector3 t = toVector3(parts[0], "pose translation");
+    if (const char* why = translationProblem(t))
+      throw py::value_error(std::string("pose translation ") + why);
     const std::vector<double> q = toVector(parts[1], 4, "pose quaternion (w, x, y, z)");
     const std::optional<Quaternion> rotation = unitQuaternion(q[0], q[1], q[2], q[3]);
     if (!rotation)

@@ -21,6 +21,15 @@ Transform makeTransform(const Vector3& translation, const Quaternion& rotation);
 // zero or non-finite quaternion, which names none. Every front end reads quaternions through it.
 std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z);
 
+// The largest coordinate a pose may hold, mm (a thousand kilometres): past it, float geometry
+// (Embree) and squared distances lose all precision. Model geometry has the same bound.
+inline constexpr double kMaxCoordinate = 1e9;
+
+// Why `translation` cannot be a pose's ("is not finite", "lies past 1e9 mm"), or nullptr when
+// it can. Every front end checks poses' translations through it, as quaternions through
+// unitQuaternion.
+const char* translationProblem(const Vector3& translation);
+
 // Standard Denavit-Hartenberg frame: T = Rz(theta) * Tz(d) * Tx(a) * Rx(alpha).
 Transform denavitHartenberg(double theta, double d, double a, double alpha);
 

@@ -20,13 +20,17 @@
 #include <H5PLpublic.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <type_traits>
 
 #include "graspkit/error.hpp"
 #include "graspkit/io/input_file.hpp"
 #include "graspkit/io/output_file.hpp"
+#include "io/contained_read.hpp"
+#include "io/hdf5_image_check.hpp"
 
 namespace graspkit {
 namespace {
@@ -456,6 +460,158 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
   return dataset;
 }
 
+// A dataset as bytes, to carry it from the child process that read it (io/contained_read.hpp).
+// Both ends are this build, so the values travel as their memory images, exactly.
+class Packer {
+ public:
+  template <typename T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  void put(const std::string& text) {
+    put(text.size());
+    bytes_.append(text);
+  }
+  template <typename T>
+  void put(const std::vector<T>& values) {
+    put(values.size());
+    for (const T& value : values) put(value);
+  }
+  template <int Rows, int Cols>
+  void put(const Eigen::Matrix<double, Rows, Cols>& m) {
+    for (int k = 0; k < Rows * Cols; ++k) put(m.data()[k]);
+  }
+  void put(const Transform& pose) { put(Eigen::Matrix4d(pose.matrix())); }
+  void put(const BreakawayState& state) {
+    put(state.engaged);
+    put(state.value);
+  }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(std::string_view bytes) : bytes_(bytes) {}
+  template <typename T>
+  void get(T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof value);
+    std::memcpy(static_cast<void*>(&value), bytes_.data(), sizeof value);
+    bytes_.remove_prefix(sizeof value);
+  }
+  void get(std::string& text) {
+    std::size_t size = 0;
+    get(size);
+    need(size);
+    text.assign(bytes_.substr(0, size));
+    bytes_.remove_prefix(size);
+  }
+  template <typename T>
+  void get(std::vector<T>& values) {
+    std::size_t size = 0;
+    get(size);
+    need(size);  // each value takes at least a byte
+    values.resize(size);
+    for (T& value : values) get(value);
+  }
+  template <int Rows, int Cols>
+  void get(Eigen::Matrix<double, Rows, Cols>& m) {
+    for (int k = 0; k < Rows * Cols; ++k) get(m.data()[k]);
+  }
+  void get(Transform& pose) {
+    Eigen::Matrix4d m;
+    get(m);
+    pose.matrix() = m;
+  }
+  void get(BreakawayState& state) {
+    get(state.engaged);
+    get(state.value);
+  }
+
+ private:
+  void need(std::size_t bytes) const {
+    if (bytes_.size() < bytes) throw Error("a dataset read in a child process came back cut short");
+  }
+  std::string_view bytes_;
+};
+
+std::string pack(const GraspDataset& d) {
+  Packer p;
+  p.put(d.objectFile);
+  p.put(d.objectName);
+  p.put(d.objectMass);
+  p.put(d.handFile);
+  p.put(d.handName);
+  p.put(d.engineVersion);
+  p.put(d.seed);
+  p.put(d.grasps.size());
+  for (const DatasetGrasp& g : d.grasps) {
+    p.put(g.pregrasp);
+    p.put(g.grasp);
+    p.put(g.openDofs);
+    p.put(g.closedDofs);
+    p.put(g.breakaway);
+    p.put(g.epsilon);
+    p.put(g.volume);
+    p.put(g.forceClosure);
+    p.put(g.held);
+    p.put(g.contactPoints);
+    p.put(g.contactNormals);
+  }
+  return p.take();
+}
+
+GraspDataset unpack(std::string_view bytes) {
+  Unpacker u(bytes);
+  GraspDataset d;
+  u.get(d.objectFile);
+  u.get(d.objectName);
+  u.get(d.objectMass);
+  u.get(d.handFile);
+  u.get(d.handName);
+  u.get(d.engineVersion);
+  u.get(d.seed);
+  std::size_t count = 0;
+  u.get(count);
+  if (count > bytes.size()) throw Error("a dataset read in a child process came back cut short");
+  d.grasps.resize(count);
+  for (DatasetGrasp& g : d.grasps) {
+    u.get(g.pregrasp);
+    u.get(g.grasp);
+    u.get(g.openDofs);
+    u.get(g.closedDofs);
+    u.get(g.breakaway);
+    u.get(g.epsilon);
+    u.get(g.volume);
+    u.get(g.forceClosure);
+    u.get(g.held);
+    u.get(g.contactPoints);
+    u.get(g.contactNormals);
+  }
+  return d;
+}
+
+// libhdf5's read of a file's bytes in this process: the child's half of loadGraspDataset.
+GraspDataset readImage(const std::string& bytes, const fs::path& file) {
+  Handle access(H5Pcreate(H5P_FILE_ACCESS), &H5Pclose);
+  if (H5Pset_fapl_core(access, 1 << 16, 0) < 0 ||
+      H5Pset_file_image(access, const_cast<char*>(bytes.data()), bytes.size()) < 0)
+    throw Error(SourceLocation{file.string()}, "HDF5 cannot hold the file in memory");
+  // The core driver refuses an image whose name exists on disk; this name never can.
+  Handle handle(H5Fopen("/proc/self/graspkit-dataset-image", H5F_ACC_RDONLY, access), &H5Fclose);
+  if (!handle.valid()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
+  return readFile(file, handle);
+}
+
+// What the child may take: a dataset's arrays hold up to the 1 GiB of its file, and libhdf5 its
+// working copies beside them.
+constexpr std::size_t kChildMemory = std::size_t{4} << 30;
+constexpr std::chrono::seconds kChildTime{600};
+
 }  // namespace
 
 void saveGraspDataset(const GraspDataset& dataset, const fs::path& file) {
@@ -488,14 +644,11 @@ GraspDataset loadGraspDataset(const fs::path& file) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   H5PLset_loading_state(0);  // a dataset's filter never loads a shared library
   if (bytes.empty()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
-  Handle access(H5Pcreate(H5P_FILE_ACCESS), &H5Pclose);
-  if (H5Pset_fapl_core(access, 1 << 16, 0) < 0 ||
-      H5Pset_file_image(access, const_cast<char*>(bytes.data()), bytes.size()) < 0)
-    throw Error(SourceLocation{file.string()}, "HDF5 cannot hold the file in memory");
-  // The core driver refuses an image whose name exists on disk; this name never can.
-  Handle handle(H5Fopen("/proc/self/graspkit-dataset-image", H5F_ACC_RDONLY, access), &H5Fclose);
-  if (!handle.valid()) throw Error(SourceLocation{file.string()}, "not an HDF5 file");
-  return readFile(file, handle);
+  checkHdf5Image(bytes, file);
+  // libhdf5 trusts more of a file than can be checked here: it reads in a child process, and a
+  // crash or a runaway there is an error naming the file (io/contained_read.hpp).
+  return unpack(
+      readInChild([&] { return pack(readImage(bytes, file)); }, file, kChildTime, kChildMemory));
 }
 
 }  // namespace graspkit

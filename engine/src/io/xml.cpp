@@ -243,6 +243,8 @@ Transform parseFullTransform(const std::filesystem::path& file, const tinyxml2::
   };
   const auto q = read(content.substr(open_q + 1, close_q - open_q - 1), 4);
   const auto t = read(content.substr(open_t + 1, close_t - open_t - 1), 3);
+  if (const char* why = translationProblem(Vector3(t[0], t[1], t[2])))
+    throw Error(at(file, element), fmt::format("the translation {}", why));
   return makeTransform(Vector3(t[0], t[1], t[2]),
                        checkedQuaternion(file, element, q[0], q[1], q[2], q[3]));
 }
@@ -268,6 +270,8 @@ Transform transform(const std::filesystem::path& file, const tinyxml2::XMLElemen
     Transform step = Transform::Identity();
     if (name == "translation") {
       step.translation() = vector3(file, *part);
+      if (const char* why = translationProblem(step.translation()))
+        throw Error(at(file, *part), fmt::format("the translation {}", why));
     } else if (name == "rotation") {
       step = rotationAbout(file, *part);
     } else if (name == "rotationMatrix") {

@@ -12,6 +12,12 @@ Transform makeTransform(const Vector3& translation, const Quaternion& rotation) 
   return t;
 }
 
+const char* translationProblem(const Vector3& translation) {
+  if (!translation.allFinite()) return "is not finite";
+  if (translation.cwiseAbs().maxCoeff() > kMaxCoordinate) return "lies past 1e9 mm";
+  return nullptr;
+}
+
 std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z) {
   const double largest = std::max({std::abs(w), std::abs(x), std::abs(y), std::abs(z)});
   if (!(largest > 0.0) || !std::isfinite(largest)) return std::nullopt;

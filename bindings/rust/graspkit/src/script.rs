@@ -53,7 +53,8 @@ pub struct PluginInfo {
     pub error: String,
 }
 
-/// Loads every plugin on the search path and lists them, loaded or not.
+/// Lists every plugin on the search path as the probe's child process found it (none is loaded
+/// into this process), loadable or not.
 pub fn plugins_scan() -> Result<Vec<PluginInfo>> {
     let mut count = 0usize;
     check(unsafe { sys::graspkit_plugins_scan(&mut count) })?;
