@@ -301,6 +301,11 @@ TEST(CAbi, BodiesOfTheProjectBox) {
   bad = set;
   bad.translation[1] = NAN;
   EXPECT_EQ(graspkit_body_set_pose(world, 0, &bad), GRASPKIT_ERROR_INPUT);
+  // Past the 1e9 mm every front end takes (transform.hpp, kMaxCoordinate).
+  bad = set;
+  bad.translation[0] = 1e300;
+  EXPECT_EQ(graspkit_body_set_pose(world, 0, &bad), GRASPKIT_ERROR_INPUT);
+  EXPECT_NE(lastError().find("lies past 1e9 mm"), std::string::npos) << lastError();
   EXPECT_EQ(graspkit_body_set_pose(world, 0, nullptr), GRASPKIT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(graspkit_body_get_pose(world, 3, &got), GRASPKIT_ERROR_OUT_OF_RANGE);
   ASSERT_EQ(graspkit_body_get_pose(world, 0, &got), GRASPKIT_OK);

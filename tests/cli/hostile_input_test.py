@@ -273,11 +273,33 @@ def escape_codes():
             "not UTF-8")
 
 
+# Item 4: datasets that once made libhdf5 read past its buffers or ask for exabytes (the dataset
+# fuzz target's finds), loaded by a sandboxed script: an error naming the file, never a crash.
+def hostile_datasets():
+    folder = case_folder("datasets")
+    inputs = sorted((SOURCE / "fuzz/regressions/dataset_fuzz").glob("crash-*"))
+    check("datasets: the fuzz target's finds are there to replay", len(inputs) >= 2, str(inputs))
+    for k, found in enumerate(inputs):
+        shutil.copy(found, folder / f"d{k}.h5")
+    script = folder / "load.lua"
+    script.write_text(f"""
+for k = 0, {len(inputs) - 1} do
+  local ok, err = pcall(graspkit.load_dataset, graspkit.script_folder .. "/d" .. k .. ".h5")
+  print(ok, err)
+end
+""")
+    result = run("run", script)
+    lines = [l for l in result.out.splitlines() if l.strip()]
+    check("datasets: each hostile dataset is an error naming it", result.returncode == 0 and
+          len(lines) == len(inputs) and all(l.startswith("false") and ".h5" in l for l in lines),
+          result.out + result.err[-400:])
+
+
 WORK.mkdir(parents=True, exist_ok=True)
 for case in [convert_names_stay_inside_out, fifo_output_is_refused, tiny_mass_is_refused,
              overlapping_boxes_are_refused, batch_list_not_utf8, symlink_loop_robot, unruly_plugins,
              huge_extrusion, closed_stdout, numeric_flags, stale_objects_staging,
-             sandboxed_existence, escape_codes]:
+             sandboxed_existence, escape_codes, hostile_datasets]:
     case()
 if failures:
     print(f"{len(failures)} hostile-input case(s) failed")

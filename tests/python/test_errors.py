@@ -172,6 +172,13 @@ def test_values_numpy_cannot_convert_raise_instead_of_crashing(graspit_data):
             graspkit.RayScene(world).nearest(bad)
     with pytest.raises(ValueError, match="translation"):
         graspkit.pose("abc", (1, 0, 0, 0))
+    # Past the 1e9 mm every front end takes, as a tuple and as a matrix.
+    with pytest.raises(ValueError, match="lies past 1e9 mm"):
+        hand.pose = ((1e300, 0, 0), (1, 0, 0, 0))
+    far = np.eye(4)
+    far[0, 3] = 1e300
+    with pytest.raises(ValueError, match="lies past 1e9 mm"):
+        hand.pose = far
     with pytest.raises(ValueError, match="not a finite number"):
         hand.inverse_kinematics(np.full((4, 4), np.nan))
     with pytest.raises(graspkit.Error, match="not a regular file"):

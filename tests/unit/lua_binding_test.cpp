@@ -211,6 +211,8 @@ TEST_F(LuaBinding, BadArgumentsRaiseWithTheScriptLine) {
   EXPECT_NE(message.find("bad argument #1 to 'set_dofs'"), std::string::npos) << message;
   EXPECT_NE(message.find("4 DOF values expected"), std::string::npos) << message;
 
+  message = error(setup + "hand:set_pose(graspkit.pose({1e300, 0, 0}))");
+  EXPECT_NE(message.find("the translation lies past 1e9 mm"), std::string::npos) << message;
   message = error(setup + "hand:set_dofs({0, 0/0, 0, 0})");
   EXPECT_NE(message.find("element 2 is not a finite number"), std::string::npos) << message;
   message = error(setup + "world:robot(2)");

@@ -42,6 +42,9 @@ void writeAll(int fd, std::string_view text) {
 // The child's report: 'O' and the bytes, or 'E' and an Error's message.
 [[noreturn]] void runChild(int fd, const std::function<std::string()>& read,
                            std::size_t memory_limit) {
+  // A crash here is the reader's, and the parent reports it: the host's handlers (a fuzzer's
+  // that saves the input, a crash reporter's) must not act on it as if the host had crashed.
+  for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
 #ifndef GRASPKIT_UNDER_ASAN
   const rlimit limit{memory_limit, memory_limit};
   ::setrlimit(RLIMIT_AS, &limit);
