@@ -119,6 +119,10 @@ def overlapping_boxes_are_refused():
         world = box_world(case_folder(name), at)
         refused(f"simulate: {name} interpenetrates", run("simulate", world, "--root", MODELS,
                                                          "--seconds", "0.05"), (1,), "interpenetrate")
+    # A time step so small that the simulation would never end.
+    world = box_world(case_folder("tiny_dt"), "0 0 180.2")
+    refused("simulate --dt 1e-300", run("simulate", world, "--root", MODELS, "--dt", "1e-300",
+                                        timeout=30), (1,), "time step")
     # The box resting on the floor and another standing on it: a legal start, simulated.
     world = box_world(case_folder("stacked"), "0 0 180.2")
     result = run("simulate", world, "--root", MODELS, "--seconds", "0.05")

@@ -28,6 +28,9 @@ class World;
 
 inline constexpr double kDefaultTimeStep = 0.0025;  // s, GraspIt!'s
 inline constexpr double kMaxTimeStep = 0.05;        // s; larger steps are refused
+// The smallest step a simulation runs at, s: below it a second takes over a million steps, and a
+// dt of 1e-300 would never end.
+inline constexpr double kMinTimeStep = 1e-6;
 inline constexpr double kStandardGravity = 9810.0;  // mm/s^2
 
 // Contacts settle at half the contact threshold, as GraspIt!'s error correction aims for, so a
@@ -87,7 +90,8 @@ struct SimulateResult {
   StepReport last;
 };
 
-// Steps `world` for `request.seconds`. Errors propagate as from step().
+// Steps `world` for `request.seconds`. Throws graspkit::Error for a dt outside [kMinTimeStep,
+// kMaxTimeStep]; other errors propagate as from step().
 SimulateResult simulate(World& world, const SimulateRequest& request);
 
 }  // namespace graspkit

@@ -828,6 +828,10 @@ SimulateResult simulate(World& world, const SimulateRequest& request) {
   if (!(request.seconds >= 0.0 && std::isfinite(request.seconds))) {
     throw Error(fmt::format("simulated time {} s must be a finite number >= 0", request.seconds));
   }
+  if (!(request.dt >= kMinTimeStep && request.dt <= kMaxTimeStep)) {
+    throw Error(fmt::format("time step {} s is outside [{}, {}] s", request.dt, kMinTimeStep,
+                            kMaxTimeStep));
+  }
   // Checked where a world starts (time 0), not before each of grasp validation's trials, which
   // continue a settled world: the check walks every triangle of the objects it compares.
   if (world.time() == 0.0) refuseSharedVolume(world);

@@ -22,9 +22,9 @@ void checkRequest(const ValidationRequest& request) {
       !(std::isfinite(request.settleSeconds) && request.settleSeconds >= 0.0)) {
     throw Error("grasp validation: seconds, slip, turn and gravity must be positive numbers");
   }
-  if (!(request.dt > 0.0 && request.dt <= kMaxTimeStep)) {
-    throw Error(fmt::format("grasp validation: time step {} s is outside (0, {}] s", request.dt,
-                            kMaxTimeStep));
+  if (!(request.dt >= kMinTimeStep && request.dt <= kMaxTimeStep)) {
+    throw Error(fmt::format("grasp validation: time step {} s is outside [{}, {}] s", request.dt,
+                            kMinTimeStep, kMaxTimeStep));
   }
 }
 
