@@ -149,7 +149,13 @@ int encode(lua_State* L) {
         L, 2,
         fmt::format("option 'indent' must be -1 (one line) .. {}, got {}", kMaxIndent, indent));
   }
-  const std::string text = toJson(L, 1, 0, "value").dump(indent);
+  std::string text;
+  try {
+    text = toJson(L, 1, 0, "value").dump(indent);
+  } catch (const json::type_error&) {
+    // The one way dump fails: a string whose bytes are not UTF-8, which JSON cannot hold.
+    throw ArgumentError(L, 1, "a string in the value is not UTF-8 text, which JSON cannot hold");
+  }
   lua_pushlstring(L, text.data(), text.size());
   return 1;
 }

@@ -271,6 +271,13 @@ def escape_codes():
     check("info --json: escape codes in names are JSON escapes",
           result.returncode == 0 and "\\u001b]0;pwned" in result.out and
           json.loads(result.out)["robots"][0]["name"].startswith("evil\x1b"), result.out[:300])
+    # A model file whose name is not UTF-8 would name a body that no saved world could hold.
+    shutil.copy(MODELS / "objects/box.xml", folder / "box.xml")
+    shutil.copy(MODELS / "objects/box.iv", folder / "box.iv")
+    latin_name = os.fsencode(folder) + b"/caf\xe9.xml"
+    shutil.copy(folder / "box.xml", latin_name)
+    refused("info: a model file whose path is not UTF-8", run("info", os.fsdecode(latin_name)), (1,),
+            "not UTF-8")
     bad = folder / "latin1.urdf"
     bad.write_bytes(b'<?xml version="1.0"?>\n<robot name="caf\xe9">\n</robot>\n')
     refused("info: an XML file that is not UTF-8", run("info", bad), (1,), "latin1.urdf:2",

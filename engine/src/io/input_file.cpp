@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/utf8.hpp"
 
 namespace graspkit {
 
@@ -38,6 +39,10 @@ void checkInputFile(const fs::path& file) {
       if (c == '\0') c = '?';
     throw Error(SourceLocation{shown}, "the path holds a NUL byte");
   }
+  // Paths end up in saved worlds, plans and datasets (XML, JSON, HDF5 strings), which hold UTF-8
+  // text: a file whose path is not UTF-8 would be saved into a file that cannot be read back.
+  if (firstInvalidUtf8(file.native()))
+    throw Error(SourceLocation{file.string()}, "the path is not UTF-8 text");
   // The guard comes before any look at the file, so that a refused path tells nothing, not even
   // whether it exists.
   if (const ReadGuard& guard = threadGuard()) guard(file);
