@@ -85,7 +85,10 @@ int runPlugins(const PluginsOptions& options, std::ostream& out) {
   Registry& registry = Registry::global();
   const std::vector<PluginInfo> plugins = registry.plugins().survey();
   if (options.json)
-    out << pluginsJson(registry, plugins).dump(2) << "\n";
+    // A plugin's error text is its own (an exception's what()): bytes JSON cannot hold are
+    // replaced, not a failure of the listing.
+    out << pluginsJson(registry, plugins).dump(2, ' ', false, json::error_handler_t::replace)
+        << "\n";
   else
     printText(registry, plugins, out);
   for (const PluginInfo& info : plugins)

@@ -161,6 +161,7 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenCase{"same_name.so", "a plugin named 'corpus_good' is already loaded",
                    "ImpostorType"},
         BrokenCase{"empty_names.so", "registers a robot type with no name", ""},
+        BrokenCase{"not_utf8_names.so", "registers a robot type whose name is not UTF-8 text", ""},
         BrokenCase{"not_elf.so", "cannot load", ""}),
     [](const auto& info) { return fs::path(info.param.file).stem().string(); });
 
@@ -219,7 +220,7 @@ TEST(PluginLoader, LoadAllReportsEveryFileLoadedOrNot) {
   Registry registry;
   registry.plugins().setSearchPath(std::vector<fs::path>{kGood, kBroken});
   const std::vector<PluginInfo> all = registry.plugins().loadAll();
-  ASSERT_EQ(all.size(), 11u);  // good + ten broken files
+  ASSERT_EQ(all.size(), 12u);  // good + eleven broken files
   int loaded = 0;
   for (const PluginInfo& info : all) {
     if (info.loaded) {
@@ -232,7 +233,7 @@ TEST(PluginLoader, LoadAllReportsEveryFileLoadedOrNot) {
     }
   }
   EXPECT_EQ(loaded, 1);
-  EXPECT_EQ(registry.plugins().failures().size(), 10u);
+  EXPECT_EQ(registry.plugins().failures().size(), 11u);
 }
 
 TEST(PluginLoader, SearchesTheEnvironmentFirstThenBesideTheEngine) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/io/utf8.hpp"
 #include "graspkit/log.hpp"
 #include "graspkit/plugin.hpp"
 
@@ -80,6 +81,10 @@ OpenedPlugin openDescriptor(const std::filesystem::path& file,
     return fail(fmt::format("descriptor size {} bytes, this engine expects {}",
                             descriptor->descriptor_size, sizeof(graspkit_plugin_descriptor)));
   if (!descriptor->name || !*descriptor->name) return fail("the descriptor has no plugin name");
+  // Names are shown, listed in JSON and compared: they must be text.
+  if (firstInvalidUtf8(descriptor->name) ||
+      (descriptor->version && firstInvalidUtf8(descriptor->version)))
+    return fail("the descriptor's plugin name or version is not UTF-8 text");
   info.name = descriptor->name;
   info.version = descriptor->version ? descriptor->version : "";
   if (!descriptor->register_factories) return fail("the descriptor has no register function");
@@ -117,6 +122,8 @@ PluginInfo commitPlugin(Registry& registry, OpenedPlugin opened,
   for (const auto& item : opened.staging.staged) {
     const char* kind = toString(item.kind);
     if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
+    if (firstInvalidUtf8(item.name))
+      return fail(fmt::format("registers a {} whose name is not UTF-8 text", kind));
     if (!item.hasFactory())
       return fail(fmt::format("registers {} '{}' with no factory", kind, item.name));
     if (!names.insert({item.kind, item.name}).second)
