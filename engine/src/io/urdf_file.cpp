@@ -189,6 +189,13 @@ class UrdfReader {
           const std::vector<double> m = finiteNumbers(*mass, "value", 1);
           if (!m.empty() && m[0] < 0.0)
             throw Error(xml::at(file_, *mass), fmt::format("link '{}': a negative mass", name));
+          // URDF's way to say "massless" (a frame, a sensor): it adds nothing to the body it is
+          // fixed to, and a link of its own then takes GraspIt!'s default mass. Said, not silent.
+          if (!m.empty() && m[0] == 0.0)
+            warn(WarningKind::Mass, xml::at(file_, *mass),
+                 fmt::format("link '{}': mass 0; a link with no mass of its own takes GraspIt!'s "
+                             "default {} g",
+                             name, kDefaultMass));
         }
         if (const XMLElement* inertia = inertial->FirstChildElement("inertia"))
           for (const char* a : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"})
