@@ -278,6 +278,10 @@ def escape_codes():
     shutil.copy(folder / "box.xml", latin_name)
     refused("info: a model file whose path is not UTF-8", run("info", os.fsdecode(latin_name)), (1,),
             "not UTF-8")
+    saved = os.fsencode(folder) + b"/w\xe9.xml"
+    refused("info: a world saved to a path that is not UTF-8", run(
+        "simulate", MODELS / "worlds/drop.xml", "--root", MODELS, "--seconds", "0.01", "--out",
+        os.fsdecode(saved)), (1,), "not UTF-8")
     bad = folder / "latin1.urdf"
     bad.write_bytes(b'<?xml version="1.0"?>\n<robot name="caf\xe9">\n</robot>\n')
     refused("info: an XML file that is not UTF-8", run("info", bad), (1,), "latin1.urdf:2",

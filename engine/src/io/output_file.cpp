@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/error.hpp"
+#include "graspkit/io/utf8.hpp"
 
 namespace graspkit {
 
@@ -71,6 +72,9 @@ int nameUnnamed(int fd, const fs::path& temporary) {
 }  // namespace
 
 void checkReplaceable(const fs::path& file) {
+  // What graspkit writes, it must be able to read back: the read gate takes UTF-8 paths only.
+  if (firstInvalidUtf8(file.native()))
+    throw Error(SourceLocation{file.string()}, "the path is not UTF-8 text");
   std::error_code ec;
   const fs::file_status target = fs::status(file, ec);  // through symlinks: what would be lost
   if (fs::exists(target) && !fs::is_regular_file(target)) {

@@ -18,8 +18,9 @@
 
 namespace graspkit {
 
-// Throws graspkit::Error naming `file` when it exists and is not a writable regular file (the
-// checks writeFileAtomically makes first; writers that rename their own temporaries use it).
+// Throws graspkit::Error naming `file` when its path is not UTF-8 (it could not be read back) or
+// it exists and is not a writable regular file (the checks writeFileAtomically makes first;
+// writers that rename their own temporaries use it).
 void checkReplaceable(const std::filesystem::path& file);
 
 // Creates `folder` and the folders above it where missing (an output folder a command writes
