@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "graspkit.h"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

@@ -27,10 +27,10 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

@@ -12,13 +12,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/dynamics.hpp"
-#include "graspkit/grasp_validation.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/dynamics/grasp_validation.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

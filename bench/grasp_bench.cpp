@@ -13,13 +13,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/collision.hpp"
-#include "graspkit/contact_search.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/collision/contact_search.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

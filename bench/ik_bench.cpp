@@ -14,10 +14,11 @@
 #include <random>
 #include <vector>
 
-#include "graspkit/inverse_kinematics.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

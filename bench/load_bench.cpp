@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/world_file.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/lua/script_host.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/model/world.hpp"
 
 #include <lua.hpp>
 

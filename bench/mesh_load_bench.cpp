@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/mass_properties.hpp"
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/geometry/mass_properties.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 
 namespace {
 

@@ -19,13 +19,13 @@
 #include <filesystem>
 #include <thread>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

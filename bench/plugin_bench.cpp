@@ -12,8 +12,8 @@
 
 #include <filesystem>
 
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

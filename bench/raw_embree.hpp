@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 namespace graspkit::bench {
 

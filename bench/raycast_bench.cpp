@@ -20,9 +20,9 @@
 #include <random>
 #include <vector>
 
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 #include "raw_embree.hpp"
 
 namespace fs = std::filesystem;

@@ -10,11 +10,11 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/render.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/render/render.hpp"
 #include "raw_embree.hpp"
 
 namespace fs = std::filesystem;

@@ -23,9 +23,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/friction_cone.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/wrench_space.hpp"
+#include "graspkit/grasp/friction_cone.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/grasp/wrench_space.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspkit;

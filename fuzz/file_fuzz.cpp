@@ -16,16 +16,18 @@
 #include <fstream>
 #include <string>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/grasp_dataset_file.hpp"
-#include "graspkit/io/mjcf_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/urdf_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/mesh_loader.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
+#include "graspkit/io/dataset/grasp_dataset_file.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/eigengrasp_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/virtual_contact_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/io/mjcf/mjcf_file.hpp"
+#include "graspkit/io/urdf/urdf_file.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace {
 

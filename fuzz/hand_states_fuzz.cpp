@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "hand_state_file.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // libFuzzer target for the plan JSON reader of render, export, view and validate
-// (apps/graspkit/scene_frames.cpp): any bytes as a plan must give frames whose worlds hold
+// (apps/graspkit/support/scene_frames.cpp): any bytes as a plan must give frames whose worlds hold
 // finite, rigid poses, or a graspkit::Error. The fuzzer runs in the project's models folder, so
 // a plan naming "worlds/gripper_box.xml" (as the seeds do) reaches the grasp-by-grasp reading.
 
@@ -12,9 +12,9 @@
 #include <fstream>
 #include <string>
 
-#include "graspkit/error.hpp"
-#include "graspkit/log.hpp"
-#include "scene_frames.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "support/scene_frames.hpp"
 
 namespace {
 

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/grasp/robot_type.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/search_energy.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot_type.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "plugin/plugin_file.hpp"
 
 namespace {

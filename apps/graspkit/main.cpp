@@ -14,12 +14,25 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include "commands.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/version.hpp"
-#include "terminal_text.hpp"
-#include "warning_reporter.hpp"
+#include "commands/batch_command.hpp"
+#include "commands/convert_command.hpp"
+#include "commands/export_command.hpp"
+#include "commands/grasp_command.hpp"
+#include "commands/info_command.hpp"
+#include "commands/objects_command.hpp"
+#include "commands/plan_command.hpp"
+#include "commands/plugins_command.hpp"
+#include "commands/render_command.hpp"
+#include "commands/run_command.hpp"
+#include "commands/simulate_command.hpp"
+#include "commands/test_command.hpp"
+#include "commands/validate_command.hpp"
+#include "commands/view_command.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/base/version.hpp"
+#include "support/terminal_text.hpp"
+#include "support/warning_reporter.hpp"
 
 namespace {
 
@@ -103,7 +116,8 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
 
 std::set<graspkit::WarningKind> silencedKinds(const std::vector<std::string>& names) {
   std::set<graspkit::WarningKind> kinds;
-  for (const std::string& name : names) kinds.insert(*graspkit::warningKindFromName(name));
+  for (const std::string& name : names)
+    kinds.insert(*graspkit::valueNamed<graspkit::WarningKind>(name));
   return kinds;
 }
 
@@ -123,7 +137,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "Print debugging detail and every repeated warning");
   std::vector<std::string> kind_names;
   for (graspkit::WarningKind kind : graspkit::kWarningKinds)
-    kind_names.emplace_back(graspkit::warningKindName(kind));
+    kind_names.emplace_back(graspkit::nameOf(kind));
   app.add_option("--no-warn", no_warn, "Hide one kind of warning (repeatable)")
       ->check(CLI::IsMember(kind_names))
       ->type_name("KIND");

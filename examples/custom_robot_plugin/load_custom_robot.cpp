@@ -14,15 +14,15 @@
 #include <cstdio>
 #include <string>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/inverse_kinematics.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <optional>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 2) {

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "bound_objects.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 
@@ -89,7 +89,7 @@ int file(lua_State* L) {
 
 int material(lua_State* L) {
   const BoundBody& body = toBody(L, 1);
-  const std::string_view text = materialName(bodyModel(body.world->world, body.ref).material);
+  const std::string_view text = nameOf(bodyModel(body.world->world, body.ref).material);
   lua_pushlstring(L, text.data(), text.size());
   return 1;
 }
@@ -276,7 +276,7 @@ void pushContact(lua_State* L, const WorldHandle& world, const Contact& contact)
   lua_setfield(L, -2, "distance");
   lua_pushnumber(L, contact.mu);
   lua_setfield(L, -2, "mu");
-  lua_pushstring(L, contactModelName(contact.model));
+  lua_pushlstring(L, nameOf(contact.model).data(), nameOf(contact.model).size());
   lua_setfield(L, -2, "model");
   lua_pushnumber(L, contact.torsion);
   lua_setfield(L, -2, "torsion");

@@ -8,10 +8,10 @@
 
 #include <lua.hpp>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/ray_scene.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 namespace graspkit::lua {
 

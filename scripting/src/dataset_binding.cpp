@@ -1,8 +1,8 @@
 // graspkit.load_dataset: a grasp dataset file that graspkit batch wrote (docs/dataset.md), as a
 // plain table, so a script can pick, filter and replay a dataset's grasps.
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/grasp_dataset_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/io/dataset/grasp_dataset_file.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 #include "script_context.hpp"

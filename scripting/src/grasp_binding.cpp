@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "bound_objects.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 

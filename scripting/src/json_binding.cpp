@@ -6,7 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "json_value.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"

@@ -5,8 +5,8 @@
 
 #include <cstring>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/output_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/output_file.hpp"
 
 namespace graspkit::lua {
 namespace {

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::lua {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "graspkit/version.hpp"
+#include "graspkit/base/version.hpp"
 #include "lua_api.hpp"
 #include "script_context.hpp"
 

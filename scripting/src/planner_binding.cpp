@@ -15,10 +15,10 @@
 #include <memory>
 
 #include "bound_objects.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 #include "script_context.hpp"
@@ -318,8 +318,9 @@ void readRequest(lua_State* L, int options, BoundPlanner& bound) {
   request.world = std::make_shared<const World>(source->world.clone());
   request.robot = robotOption(L, options, source->world);
   request.object = objectOption(L, options, *source);
-  request.position = parsePositionSpace(table.string("space", "axis-angle"));
-  request.posture = parsePostureSpace(table.string("posture", "eigen"));
+  request.position =
+      parseNamed<PositionSpace>(table.string("space", "axis-angle"), "position space");
+  request.posture = parseNamed<PostureSpace>(table.string("posture", "eigen"), "posture space");
   const double seed = table.number("seed", 1);
   if (seed < 0 || seed != std::floor(seed) || seed > 9007199254740992.0)
     throw ArgumentError(L, options, "option 'seed' must be a whole number >= 0");

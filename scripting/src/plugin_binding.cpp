@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/plugin_loader.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 #include "script_context.hpp"
@@ -32,7 +32,8 @@ void pushPluginInfo(lua_State* L, const PluginInfo& info) {
   lua_createtable(L, static_cast<int>(info.provides.size()), 0);
   for (std::size_t i = 0; i < info.provides.size(); ++i) {
     lua_createtable(L, 0, 2);
-    lua_pushstring(L, toString(info.provides[i].first));
+    lua_pushlstring(L, nameOf(info.provides[i].first).data(),
+                    nameOf(info.provides[i].first).size());
     lua_setfield(L, -2, "kind");
     lua_pushstring(L, info.provides[i].second.c_str());
     lua_setfield(L, -2, "name");

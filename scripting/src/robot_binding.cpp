@@ -4,14 +4,15 @@
 #include <fmt/format.h>
 
 #include "bound_objects.hpp"
-#include "graspkit/autograsp.hpp"
-#include "graspkit/dynamics.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/inverse_kinematics.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
+#include "graspkit/model/virtual_contact.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/virtual_contact.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
 
@@ -221,7 +222,7 @@ void pushMotion(lua_State* L, const WorldHandle& world, const AutoGraspResult& r
   lua_setfield(L, -2, "contacts");
   lua_pushinteger(L, result.iterations);
   lua_setfield(L, -2, "steps");
-  lua_pushstring(L, motionEndName(result.end));
+  lua_pushlstring(L, nameOf(result.end).data(), nameOf(result.end).size());
   lua_setfield(L, -2, "ended");
 }
 
@@ -458,8 +459,7 @@ int contacts(lua_State* L) {
 }
 
 WrenchSpaceType wrenchSpaceType(lua_State* L, int arg, const std::string& name) {
-  if (name == "L1") return WrenchSpaceType::L1;
-  if (name == "Linf" || name == "LInfinity") return WrenchSpaceType::LInfinity;
+  if (const auto type = valueNamed<WrenchSpaceType>(name)) return *type;
   throw ArgumentError(L, arg, fmt::format("gws '{}' is not 'L1' or 'Linf'", name));
 }
 

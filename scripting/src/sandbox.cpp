@@ -9,8 +9,8 @@
 
 #include <lua.hpp>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
 #include "lua_api.hpp"
 
 namespace graspkit::lua {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "graspkit/io/model_cache.hpp"
+#include "graspkit/io/common/model_cache.hpp"
 #include "graspkit/lua/script_host.hpp"
 #include "memory_limit.hpp"
 

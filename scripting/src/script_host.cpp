@@ -7,8 +7,8 @@
 #include <cstring>
 #include <optional>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
 #include "json_value.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit::lua {
 

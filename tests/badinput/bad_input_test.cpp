@@ -14,12 +14,13 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/eigengrasp_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {
@@ -229,7 +230,7 @@ struct Warnings {
   Warnings()
       : previous(setWarningHandler([this](const Warning& w) {
           // The kind last: "file:line: message [kind]".
-          texts.push_back(describe(w) + " [" + std::string(warningKindName(w.kind)) + "]");
+          texts.push_back(describe(w) + " [" + std::string(nameOf(w.kind)) + "]");
         })) {}
   ~Warnings() { setWarningHandler(previous); }
   bool has(const std::string& part) const {

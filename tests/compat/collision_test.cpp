@@ -6,10 +6,10 @@
 
 #include <algorithm>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {

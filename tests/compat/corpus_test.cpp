@@ -10,10 +10,10 @@
 
 #include <tinyxml2.h>
 
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/log.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 
@@ -128,10 +128,10 @@ TEST(Corpus, MaterialsMatchGraspItTables) {
   const auto names = materials.at("names").get<std::vector<std::string>>();
   ASSERT_EQ(names.size(), kMaterialCount);
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const auto a = materialFromName(names[i]);
+    const auto a = valueNamed<Material>(names[i]);
     ASSERT_TRUE(a) << names[i];
     for (std::size_t j = 0; j < names.size(); ++j) {
-      const auto b = materialFromName(names[j]);
+      const auto b = valueNamed<Material>(names[j]);
       EXPECT_DOUBLE_EQ(staticFriction(*a, *b), materials.at("static_cof")[i][j].get<double>())
           << names[i] << "/" << names[j];
       EXPECT_DOUBLE_EQ(kineticFriction(*a, *b), materials.at("kinetic_cof")[i][j].get<double>())
@@ -152,7 +152,7 @@ TEST(Corpus, ObjectMassPropertiesMatchGraspIt) {
       continue;
     }
     auto body = loadBodyFile(data / file);
-    EXPECT_EQ(std::string(materialName(body->material)), entry.at("material").get<std::string>());
+    EXPECT_EQ(std::string(nameOf(body->material)), entry.at("material").get<std::string>());
     EXPECT_EQ(body->mesh->triangleCount(), entry.at("triangles").get<std::size_t>());
     EXPECT_DOUBLE_EQ(body->mass, entry.at("mass_g").get<double>());
     const Vector3 cog = test::jsonVector3(entry.at("cog_mm"));

@@ -5,10 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include "graspkit/dynamics.hpp"
-#include "graspkit/inverse_kinematics.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
+#include "graspkit/model/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/robot.hpp"
 #include "reference.hpp"
 
 namespace graspkit {

@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/error.hpp"
-#include "graspkit/mass_properties.hpp"
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/geometry/mass_properties.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 #include "test_paths.hpp"
 #include "xml_scan.hpp"
 

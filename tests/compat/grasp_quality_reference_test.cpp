@@ -8,10 +8,11 @@
 
 #include <filesystem>
 
-#include "graspkit/friction_cone.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/wrench_space.hpp"
+#include "graspkit/grasp/friction_cone.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/grasp/wrench_space.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "reference.hpp"
 
 namespace graspkit {

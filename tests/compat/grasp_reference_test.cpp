@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/world.hpp"
 #include "reference.hpp"
 
 namespace graspkit {

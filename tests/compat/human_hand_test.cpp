@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/robot.hpp"
-#include "graspkit/tendon.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/model/tendon.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"

@@ -8,10 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/legacy_files.hpp"
-#include "graspkit/io/robot_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/eigengrasp_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/legacy/legacy_files.hpp"
 #include "quiet_warnings.hpp"
 #include "test_paths.hpp"
 

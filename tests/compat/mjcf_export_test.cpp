@@ -10,9 +10,11 @@
 #include <memory>
 #include <vector>
 
-#include "graspkit/io/mjcf_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/urdf_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/mjcf/mjcf_export.hpp"
+#include "graspkit/io/mjcf/mjcf_file.hpp"
+#include "graspkit/io/urdf/urdf_export.hpp"
+#include "graspkit/io/urdf/urdf_file.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"

@@ -24,11 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/io/mjcf_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/virtual_contact.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/io/graspit/robot_export.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/mjcf/mjcf_export.hpp"
+#include "graspkit/io/mjcf/mjcf_file.hpp"
+#include "graspkit/model/virtual_contact.hpp"
+#include "graspkit/model/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {

@@ -13,10 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/inverse_kinematics.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
+#include "graspkit/model/robot.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit::test {

@@ -24,12 +24,12 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/collision.hpp"
-#include "graspkit/collision_filter.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/robot.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/collision_filter.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/model/world.hpp"
 #include "test_paths.hpp"
 
 namespace graspkit {

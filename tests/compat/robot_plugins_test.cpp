@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/collision.hpp"
-#include "graspkit/collision_filter.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/model/collision_filter.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"

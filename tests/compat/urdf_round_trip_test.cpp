@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <vector>
 
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/urdf_file.hpp"
+#include "graspkit/io/graspit/robot_export.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/urdf/urdf_export.hpp"
+#include "graspkit/io/urdf/urdf_file.hpp"
 #include "quiet_warnings.hpp"
 #include "reference.hpp"
 #include "test_paths.hpp"

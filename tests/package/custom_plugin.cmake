@@ -20,8 +20,8 @@ include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 
 # 1. The install.
 run("cmake --install" COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${install})
-foreach(file bin/graspkit include/graspkit/plugin.hpp include/graspkit/registry.hpp
-             include/graspkit/io/robot_file.hpp lib/cmake/graspkit/graspkitConfig.cmake
+foreach(file bin/graspkit include/graspkit/plugin/plugin.hpp include/graspkit/plugin/registry.hpp
+             include/graspkit/io/graspit/robot_file.hpp lib/cmake/graspkit/graspkitConfig.cmake
              lib/cmake/graspkit/graspkitConfigVersion.cmake lib/cmake/graspkit/graspkitTargets.cmake
              lib/cmake/graspkit/GraspkitPlugin.cmake lib/graspkit/plugins/m7.so)
   if(NOT EXISTS ${install}/${file})

@@ -1,7 +1,7 @@
 // Crashes (SIGABRT) in its register function: probed in a child, it must not take the host down.
 #include <cstdlib>
 
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerThenAbort(graspkit::Registrar&) {

@@ -1,7 +1,7 @@
 // Crashes in a static constructor, while dlopen itself runs, before the loader sees a descriptor.
 #include <cstdlib>
 
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 struct AbortsWhenConstructed {

@@ -2,8 +2,8 @@
 // Shared by the plugin corpus: a robot type whose effect a test can see (it excludes the palm
 // against chain 0's first link from collisions).
 
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace corpus {
 

@@ -1,6 +1,6 @@
 // Provides a robot type that the good corpus plugin already provides.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerDuplicate(graspkit::Registrar& registrar) {

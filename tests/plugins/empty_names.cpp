@@ -1,6 +1,6 @@
 // A robot type with an empty name.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerUnnamed(graspkit::Registrar& registrar) {

@@ -1,7 +1,7 @@
 // Ends the process with exit(3) from its register function.
 #include <cstdlib>
 
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerThenExit(graspkit::Registrar&) {

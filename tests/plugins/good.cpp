@@ -1,6 +1,6 @@
 // A well-formed plugin: one robot type and one quality measure.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 

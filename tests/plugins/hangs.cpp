@@ -1,7 +1,7 @@
 // Never returns from its register function.
 #include <unistd.h>
 
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerForever(graspkit::Registrar&) {

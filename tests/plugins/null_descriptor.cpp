@@ -1,5 +1,5 @@
 // The entry point exists but returns no descriptor.
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 extern "C" __attribute__((visibility("default"))) const graspkit_plugin_descriptor*
 graspkit_plugin_v1() {

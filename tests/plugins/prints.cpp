@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

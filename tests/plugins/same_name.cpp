@@ -1,6 +1,6 @@
 // A second plugin calling itself "corpus_good".
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerImpostor(graspkit::Registrar& registrar) {

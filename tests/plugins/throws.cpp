@@ -2,7 +2,7 @@
 #include <stdexcept>
 
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerThenThrow(graspkit::Registrar& registrar) {

@@ -1,6 +1,6 @@
 // Registers the same robot type twice itself.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerTwice(graspkit::Registrar& registrar) {

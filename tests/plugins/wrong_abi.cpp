@@ -1,6 +1,6 @@
 // Built for an ABI this engine does not speak.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerNothing(graspkit::Registrar& registrar) {

@@ -1,6 +1,6 @@
 // Claims a descriptor larger than this engine's: built against a different header.
 #include "corpus_plugin.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace {
 void registerNothing(graspkit::Registrar& registrar) {

@@ -2,7 +2,7 @@
 // Silences load warnings for the life of the object (GraspIt!'s corpus has many unknown tags),
 // restoring the previous handler afterwards.
 
-#include "graspkit/log.hpp"
+#include "graspkit/base/log.hpp"
 
 namespace graspkit::test {
 

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "graspkit/world.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit::test {
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "graspkit/mesh.hpp"
+#include "graspkit/geometry/mesh.hpp"
 
 namespace graspkit::test {
 

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "graspkit.h"
-#include "graspkit/error.hpp"
-#include "graspkit/grasp.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/model/world.hpp"
 #include "graspkit/planning/planner.hpp"
-#include "graspkit/ray_scene.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 struct graspkit_world {
   graspkit::World world;

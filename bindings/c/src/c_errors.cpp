@@ -1,8 +1,8 @@
 // Versions, status names and the log callback (the last error is in c_api_support.cpp).
 
 #include "c_api_support.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/version.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/base/version.hpp"
 
 extern "C" {
 
@@ -43,7 +43,7 @@ graspkit_status graspkit_set_log_callback(graspkit_log_fn fn, void* user) {
       return;
     }
     graspkit::setWarningHandler([fn, user](const graspkit::Warning& warning) {
-      const std::string kind(graspkit::warningKindName(warning.kind));
+      const std::string kind(graspkit::nameOf(warning.kind));
       fn(GRASPKIT_LOG_WARNING, kind.c_str(), warning.where.file.c_str(), warning.where.line,
          warning.where.element.c_str(), warning.message.c_str(), user);
     });

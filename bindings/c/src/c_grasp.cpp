@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "c_api_support.hpp"
-#include "graspkit/autograsp.hpp"
+#include "graspkit/grasp/autograsp.hpp"
 
 using namespace graspkit;
 using namespace graspkit::c_api;

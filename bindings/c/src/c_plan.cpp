@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "c_api_support.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 using namespace graspkit;
 using namespace graspkit::c_api;

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include "c_api_support.hpp"
-#include "graspkit/plugin_loader.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 using namespace graspkit;
 using namespace graspkit::c_api;

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "c_api_support.hpp"
-#include "graspkit/io/world_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 
 using namespace graspkit;
 using namespace graspkit::c_api;

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/log.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -65,10 +65,10 @@ void installWarningHandler(py::module_& m) {
       PyExc_UserWarning, nullptr));
   m.attr("GraspkitWarning") = base;
   for (WarningKind kind : kWarningKinds) {
-    const std::string name = className(warningKindName(kind));
+    const std::string name = className(nameOf(kind));
     const std::string qualified = "graspkit." + name;
     const std::string doc = fmt::format("graspkit's '{}' warnings (graspkit --no-warn {}).",
-                                        warningKindName(kind), warningKindName(kind));
+                                        nameOf(kind), nameOf(kind));
     py::object type = py::reinterpret_steal<py::object>(
         PyErr_NewExceptionWithDoc(qualified.c_str(), doc.c_str(), base.ptr(), nullptr));
     m.attr(name.c_str()) = type;

@@ -3,9 +3,9 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/grasp.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -104,7 +104,7 @@ void bindContacts(py::module_& m) {
           "models",
           [](const Contacts& c) {
             std::vector<std::string> out;
-            for (const Contact& x : c.contacts) out.emplace_back(contactModelName(x.model));
+            for (const Contact& x : c.contacts) out.emplace_back(nameOf(x.model));
             return out;
           },
           "\"point\", \"soft_finger\" or \"frictionless\" per contact.")
@@ -170,12 +170,9 @@ void bindGrasp(py::module_& m) {
       "grasp",
       [](const RobotView& r, const py::object& object, const std::string& gws) {
         GraspRequest request;
-        if (gws == "L1")
-          request.wrenchSpace.type = WrenchSpaceType::L1;
-        else if (gws == "Linf")
-          request.wrenchSpace.type = WrenchSpaceType::LInfinity;
-        else
-          throw py::value_error(fmt::format("gws '{}': \"L1\" or \"Linf\" expected", gws));
+        const auto type = valueNamed<WrenchSpaceType>(gws);
+        if (!type) throw py::value_error(fmt::format("gws '{}': \"L1\" or \"Linf\" expected", gws));
+        request.wrenchSpace.type = *type;
         const BodyRef target =
             object.is_none() ? firstGraspable(*r.world) : toBodyRef(*r.world, object, "object");
         r.robot();

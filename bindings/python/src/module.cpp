@@ -1,6 +1,6 @@
 // The graspkit._graspkit extension module; graspkit/__init__.py re-exports it.
 
-#include "graspkit/version.hpp"
+#include "graspkit/base/version.hpp"
 #include "python_support.hpp"
 
 PYBIND11_MODULE(_graspkit, m) {

@@ -7,7 +7,7 @@
 
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/search_space.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -63,8 +63,8 @@ std::shared_ptr<PlanningRequest> requestOf(const WorldHandle& world, const py::o
     if (request->object.kind != BodyRef::Kind::Body)
       throw py::value_error("object: a free body of the world expected, not a robot link");
   }
-  request->position = parsePositionSpace(a.space);
-  request->posture = parsePostureSpace(a.posture);
+  request->position = parseNamed<PositionSpace>(a.space, "position space");
+  request->posture = parseNamed<PostureSpace>(a.posture, "posture space");
   request->energy = a.energy;
   request->seed = a.seed;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -1,8 +1,8 @@
 // Plugins and what the registry holds: graspkit.plugins(), load_plugin() and the names of robot
 // types, quality measures, search energies and planners.
 
-#include "graspkit/plugin_loader.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -17,7 +17,7 @@ py::dict toDict(const PluginInfo& info) {
   d["error"] = info.error;
   py::list provides;
   for (const auto& [kind, name] : info.provides)
-    provides.append(py::make_tuple(toString(kind), name));
+    provides.append(py::make_tuple(nameOf(kind), name));
   d["provides"] = provides;
   return d;
 }

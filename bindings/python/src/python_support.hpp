@@ -14,10 +14,10 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/io/model_cache.hpp"
-#include "graspkit/transform.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/io/common/model_cache.hpp"
+#include "graspkit/math/transform.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit::python {
 

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {

@@ -3,8 +3,9 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/inverse_kinematics.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
 #include "python_support.hpp"
 
@@ -20,7 +21,7 @@ struct Motion {
 };
 
 Motion toMotion(const AutoGraspResult& result) {
-  return {toArray(result.dofValues), result.iterations, motionEndName(result.end),
+  return {toArray(result.dofValues), result.iterations, std::string(nameOf(result.end)),
           static_cast<int>(result.contacts.size())};
 }
 

@@ -3,13 +3,13 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/grasp.hpp"
-#include "graspkit/io/body_file.hpp"
-#include "graspkit/io/robot_file.hpp"
-#include "graspkit/io/world_file.hpp"
-#include "graspkit/material.hpp"
-#include "graspkit/render.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/robot_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/model/material.hpp"
+#include "graspkit/render/render.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -147,7 +147,7 @@ void bindBody(py::module_& m) {
                              [](const BodyView& b) { return b.body().model->file.string(); })
       .def_property_readonly(
           "material",
-          [](const BodyView& b) { return std::string(materialName(b.body().model->material)); })
+          [](const BodyView& b) { return std::string(nameOf(b.body().model->material)); })
       .def_property_readonly(
           "mass", [](const BodyView& b) { return b.body().model->mass; }, "Grams.")
       .def_property_readonly(

@@ -3,7 +3,7 @@
 // the filter, and only then to FCL, straight on the shared BVHs with the two poses: no FCL
 // CollisionObject is made, so a query allocates nothing per pair but FCL's own traversal state.
 
-#include "graspkit/collision.hpp"
+#include "graspkit/collision/collision.hpp"
 
 #include <algorithm>
 
@@ -12,8 +12,8 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/collision_geometry.hpp"
-#include "graspkit/collision_filter.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/model/collision_filter.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 namespace {

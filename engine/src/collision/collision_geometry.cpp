@@ -17,7 +17,7 @@
 #include <fcl/narrowphase/distance.h>
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
 namespace {
@@ -61,7 +61,7 @@ std::shared_ptr<const CollisionGeometry> build(const TriangleMesh& mesh) {
   geometry->bvh = std::move(bvh);
   geometry->boxCenter = box.center();
   geometry->boxHalfSize = 0.5 * box.sizes();
-  geometry->hull = collision::convexHull(points);
+  geometry->hull = geometry::convexHull(points);
   return geometry;
 }
 
@@ -112,7 +112,7 @@ Cache& cache() {
 namespace {
 
 // The largest extent of a placed hull along a world direction.
-double support(const collision::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
+double support(const geometry::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
   const Vector3 local = pose.linear().transpose() * direction;
   return (local.transpose() * hull.vertices).maxCoeff() + direction.dot(pose.translation());
 }

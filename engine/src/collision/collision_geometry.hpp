@@ -10,8 +10,8 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
-#include "collision/convex_hull.hpp"
-#include "graspkit/collision.hpp"
+#include "geometry/convex_hull.hpp"
+#include "graspkit/collision/collision.hpp"
 
 namespace graspkit {
 
@@ -22,10 +22,10 @@ using BoundingVolume = fcl::OBBRSSd;
 using Bvh = fcl::BVHModel<BoundingVolume>;
 
 struct CollisionGeometry {
-  std::shared_ptr<const Bvh> bvh;             // never null
-  Vector3 boxCenter;                          // body frame, mm
-  Vector3 boxHalfSize;                        // half extents of the axis-aligned box, mm
-  std::optional<collision::ConvexHull> hull;  // of the hierarchy's vertices; none when flat
+  std::shared_ptr<const Bvh> bvh;            // never null
+  Vector3 boxCenter;                         // body frame, mm
+  Vector3 boxHalfSize;                       // half extents of the axis-aligned box, mm
+  std::optional<geometry::ConvexHull> hull;  // of the hierarchy's vertices; none when flat
 };
 
 // The world axis-aligned box of a body-frame box under `pose`: the centre moves with the pose,

@@ -1,12 +1,13 @@
 #include "collision/contact_compaction.hpp"
 
+#include <list>
+#include <optional>
+
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
-#include <cstdio>
-#include <list>
-#include <optional>
+#include "math/qhull_run.hpp"
 
 namespace graspkit::collision {
 namespace {
@@ -16,32 +17,17 @@ constexpr double kNormalTolerance = 1e-3;  // normals agree when n1 . n2 > 1 - t
 constexpr double kSamePointSq = 0.1;       // mm^2: points closer than this are one
 constexpr double kColinear = 0.1;          // |cross| below this: the points lie on a line
 
-FILE* nullSink() {
-  static FILE* sink = std::fopen("/dev/null", "w");
-  return sink;
-}
-
 // The indices of the 2-D convex hull's vertices, in qhull's order; nullopt if qhull fails.
 std::optional<std::vector<int>> hullVertices2d(std::vector<double>& xy) {
-  qhT qh_storage;
-  qhT* qh = &qh_storage;
-  QHULL_LIB_CHECK
-  qh_zero(qh, nullSink());
-  char flags[] = "qhull n Pp";
-  const int count = static_cast<int>(xy.size() / 2);
-  const int status = qh_new_qhull(qh, 2, count, xy.data(), False, flags, nullptr, nullSink());
-  std::optional<std::vector<int>> result;
-  if (status == 0) {
-    result.emplace();
+  std::vector<int> vertices;
+  const auto failure = detail::runQhull(xy, 2, "n Pp", [&](qhT* qh) {
     vertexT* vertex;
     FORALLvertices {
-      result->push_back(qh_pointid(qh, vertex->point));
+      vertices.push_back(qh_pointid(qh, vertex->point));
     }
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int still_long = 0, total_long = 0;
-  qh_memfreeshort(qh, &still_long, &total_long);
-  return result;
+  });
+  if (failure) return std::nullopt;
+  return vertices;
 }
 
 void keepPerimeter(std::vector<RawContact>& group) {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::collision {
 

@@ -1,11 +1,11 @@
 #pragma once
 // Internal: the surface points around a contact that its soft-finger patch is fitted to, and
 // GraspIt!'s merge of contacts whose patches share a point (two contacts on one patch of an
-// elastic body are one contact). See graspkit/contact_patch.hpp for what is fitted.
+// elastic body are one contact). See graspkit/collision/contact_patch.hpp for what is fitted.
 
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::raycast {
 class EmbreeMesh;

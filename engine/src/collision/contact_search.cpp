@@ -1,4 +1,4 @@
-#include "graspkit/contact_search.hpp"
+#include "graspkit/collision/contact_search.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include "collision/contact_compaction.hpp"
 #include "collision/contact_neighbourhood.hpp"
 #include "collision/triangle_contact.hpp"
-#include "graspkit/contact_patch.hpp"
-#include "graspkit/material.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/collision/contact_patch.hpp"
+#include "graspkit/model/material.hpp"
+#include "graspkit/model/world.hpp"
 #include "raycast/embree_mesh.hpp"
 
 namespace graspkit {

@@ -1,4 +1,4 @@
-#include "graspkit/self_collision_setup.hpp"
+#include "graspkit/collision/self_collision_setup.hpp"
 
 #include <fmt/format.h>
 
@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <utility>
 
-#include "graspkit/body.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/model/body.hpp"
+#include "graspkit/model/world.hpp"
 #include "raycast/embree_mesh.hpp"
 
 namespace graspkit {

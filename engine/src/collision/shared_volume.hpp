@@ -5,7 +5,7 @@
 // one pose). Dynamics asks this of the state it starts from, so that such a world is an error
 // and not a simulation that "completes" with the bodies inside each other.
 
-#include "graspkit/body_ref.hpp"
+#include "graspkit/model/body_ref.hpp"
 
 namespace graspkit {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::collision {
 

@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "graspkit/kinematic_chain.hpp"
+#include "graspkit/model/kinematic_chain.hpp"
 
 namespace graspkit::dynamics {
 

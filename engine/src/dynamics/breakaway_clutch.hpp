@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "graspkit/world.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit::dynamics {
 

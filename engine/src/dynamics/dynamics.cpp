@@ -1,7 +1,7 @@
 // One time step, as dynamics.hpp describes it: free motion, then the contact and joint-limit
 // impulses from Siconos, then the new poses.
 
-#include "graspkit/dynamics.hpp"
+#include "graspkit/dynamics/dynamics.hpp"
 
 #include <fmt/format.h>
 
@@ -18,9 +18,9 @@
 #include "dynamics/breakaway_clutch.hpp"
 #include "dynamics/friction_contact_solver.hpp"
 #include "dynamics/generalized_coordinates.hpp"
-#include "graspkit/collision.hpp"
-#include "graspkit/contact_search.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/collision/contact_search.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 

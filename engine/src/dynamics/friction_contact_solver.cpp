@@ -1,6 +1,6 @@
 #include "dynamics/friction_contact_solver.hpp"
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 #include <FrictionContactProblem.h>
 #include <Friction_cst.h>

@@ -1,6 +1,6 @@
 #include "dynamics/generalized_coordinates.hpp"
 
-#include "graspkit/world.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit::dynamics {
 

@@ -9,8 +9,8 @@
 #include <map>
 #include <vector>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
+#include "graspkit/model/body_ref.hpp"
 
 namespace graspkit {
 

@@ -1,4 +1,4 @@
-#include "graspkit/grasp_validation.hpp"
+#include "graspkit/dynamics/grasp_validation.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,8 @@
 #include <exception>
 #include <thread>
 
-#include "graspkit/world.hpp"
+#include "graspkit/base/parallel_for.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 
@@ -159,23 +160,11 @@ std::vector<ValidationResult> validateGrasps(const std::vector<World>& worlds, i
                                              int threads) {
   std::vector<ValidationResult> results(worlds.size());
   if (worlds.empty()) return results;
-  const int workers = std::clamp(threads, 1, static_cast<int>(worlds.size()));
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  auto work = [&](int w) {
-    try {
-      for (std::size_t i = next++; i < worlds.size(); i = next++)
-        results[i] = validateGrasp(worlds[i], robot, object, request);
-    } catch (...) {
-      errors[static_cast<std::size_t>(w)] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (std::thread& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  parallelFor({.end = static_cast<std::int64_t>(worlds.size()), .threads = threads},
+              [&](int, std::int64_t i) {
+                const auto at = static_cast<std::size_t>(i);
+                results[at] = validateGrasp(worlds[at], robot, object, request);
+              });
   return results;
 }
 

@@ -16,8 +16,8 @@
 
 #include "geometry/mesh_readers.hpp"
 #include "geometry/ply_header.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
 
 namespace graspkit::detail {
 namespace {

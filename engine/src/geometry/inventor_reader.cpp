@@ -45,10 +45,10 @@
 #include "geometry/inventor_shape_check.hpp"
 #include "geometry/mesh_readers.hpp"
 #include "geometry/scene_include.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 
 namespace graspkit {
 namespace {

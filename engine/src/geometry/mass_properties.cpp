@@ -7,7 +7,7 @@
 // method is GraspIt!'s: integrands x (volume), x^2/2 (first moments), x^3/3 (second moments) and
 // x^2 y/2 (products), each about the body frame's origin.
 
-#include "graspkit/mass_properties.hpp"
+#include "graspkit/geometry/mass_properties.hpp"
 
 #include <algorithm>
 #include <array>

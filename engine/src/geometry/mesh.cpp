@@ -1,4 +1,4 @@
-#include "graspkit/mesh.hpp"
+#include "graspkit/geometry/mesh.hpp"
 
 namespace graspkit {
 

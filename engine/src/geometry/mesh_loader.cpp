@@ -1,4 +1,4 @@
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,9 +6,9 @@
 #include <system_error>
 
 #include "geometry/mesh_readers.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
-#include "graspkit/log.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
+#include "graspkit/base/log.hpp"
 
 namespace graspkit {
 namespace {

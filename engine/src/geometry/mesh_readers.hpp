@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
-#include "graspkit/error.hpp"
-#include "graspkit/mesh.hpp"
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/geometry/mesh.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 
 namespace graspkit::detail {
 

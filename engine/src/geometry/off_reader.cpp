@@ -19,9 +19,9 @@
 #include <fmt/format.h>
 
 #include "geometry/mesh_readers.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
-#include "graspkit/mesh_loader.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
+#include "graspkit/geometry/mesh_loader.hpp"
 
 namespace graspkit {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <string_view>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit::detail {
 

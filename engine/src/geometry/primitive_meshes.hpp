@@ -2,7 +2,7 @@
 // Internal: the solid primitives URDF and MJCF describe (box, cylinder, sphere, capsule) as closed
 // triangle meshes centred on their frame's origin, counter-clockwise seen from outside.
 
-#include "graspkit/mesh.hpp"
+#include "graspkit/geometry/mesh.hpp"
 
 namespace graspkit::geometry {
 

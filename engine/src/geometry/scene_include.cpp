@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "geometry/mesh_readers.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/io/input_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
 
 namespace graspkit::detail {
 namespace {

@@ -1,4 +1,4 @@
-#include "graspkit/autograsp.hpp"
+#include "graspkit/grasp/autograsp.hpp"
 
 #include <fmt/format.h>
 
@@ -6,11 +6,11 @@
 #include <cmath>
 #include <span>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/contact_search.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/robot_type.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/collision/contact_search.hpp"
+#include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 namespace {
@@ -246,6 +246,16 @@ bool withinContactInstant(const World& world,
 
 }  // namespace
 
+std::span<const EnumName<MotionEnd>> enumNames(std::type_identity<MotionEnd>) {
+  static constexpr EnumName<MotionEnd> kNames[] = {
+      {MotionEnd::Settled, "settled"},
+      {MotionEnd::Contact, "contact"},
+      {MotionEnd::IterationLimit, "iteration_limit"},
+      {MotionEnd::InterpolationError, "interpolation_error"},
+      {MotionEnd::NoContact, "no_contact"}};
+  return kNames;
+}
+
 std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef* object) {
   world.robot(robot);  // range check
   const ContactRequest request;
@@ -421,22 +431,6 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
   result.dofValues.assign(r.dofValues().begin(), r.dofValues().end());
   result.contacts = robotContacts(world, robot);
   return result;
-}
-
-const char* motionEndName(MotionEnd end) {
-  switch (end) {
-    case MotionEnd::Settled:
-      return "settled";
-    case MotionEnd::Contact:
-      return "contact";
-    case MotionEnd::IterationLimit:
-      return "iteration_limit";
-    case MotionEnd::InterpolationError:
-      return "interpolation_error";
-    case MotionEnd::NoContact:
-      return "no_contact";
-  }
-  return "unknown";
 }
 
 }  // namespace graspkit

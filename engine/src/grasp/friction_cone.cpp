@@ -1,10 +1,10 @@
-#include "graspkit/friction_cone.hpp"
+#include "graspkit/grasp/friction_cone.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
 

@@ -1,12 +1,12 @@
-#include "graspkit/grasp.hpp"
+#include "graspkit/grasp/grasp.hpp"
 
 #include <fmt/format.h>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/friction_cone.hpp"
-#include "graspkit/quality.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/friction_cone.hpp"
+#include "graspkit/grasp/quality.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 

@@ -1,4 +1,4 @@
-#include "graspkit/quality.hpp"
+#include "graspkit/grasp/quality.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -8,9 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/registry.hpp"
-#include "plugin/builtins.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
 namespace {
@@ -29,21 +27,9 @@ class VolumeMeasure final : public QualityMeasure {
 
 }  // namespace
 
-void addBuiltinQualityMeasures(Registry& registry) {
-  registry.addQualityMeasure("epsilon", [] { return std::make_unique<EpsilonMeasure>(); });
-  registry.addQualityMeasure("volume", [] { return std::make_unique<VolumeMeasure>(); });
-}
-
-void registerQualityMeasure(const std::string& name, QualityMeasureFactory factory) {
-  Registry::global().addQualityMeasure(name, std::move(factory));
-}
-
-std::unique_ptr<QualityMeasure> makeQualityMeasure(const std::string& name) {
-  return Registry::global().makeQualityMeasure(name);
-}
-
-std::vector<std::string> qualityMeasureNames() {
-  return Registry::global().names(FactoryKind::QualityMeasure);
+std::vector<std::pair<std::string, QualityMeasureFactory>> builtinQualityMeasures() {
+  return {{"epsilon", [] { return std::make_unique<EpsilonMeasure>(); }},
+          {"volume", [] { return std::make_unique<VolumeMeasure>(); }}};
 }
 
 bool isForceClosure(const GraspWrenchSpace& gws) {

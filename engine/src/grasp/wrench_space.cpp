@@ -1,14 +1,50 @@
-#include "graspkit/wrench_space.hpp"
+#include "graspkit/grasp/wrench_space.hpp"
 
 #include <algorithm>
 #include <limits>
 
 #include <fmt/format.h>
 
-#include "grasp/qhull_hull.hpp"
-#include "graspkit/error.hpp"
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include "graspkit/base/error.hpp"
+#include "math/qhull_run.hpp"
 
 namespace graspkit {
+
+namespace {
+
+// The hull of the packed wrenches into `gws`: its facets (normals expanded to six coordinates by
+// gws.dimensions), volume and area, or gws.built = false with qhull's reason.
+void hullOfWrenches(std::vector<double>& coords, int dim, const char* options,
+                    GraspWrenchSpace& gws) {
+  gws.pointCount = coords.size() / static_cast<std::size_t>(dim);
+  gws.built = false;
+  gws.hyperplanes.clear();
+  gws.volume = gws.area = 0.0;
+  std::optional<std::string> failure = detail::runQhull(coords, dim, options, [&](qhT* qh) {
+    qh_getarea(qh, qh->facet_list);
+    gws.volume = qh->totvol;
+    gws.area = qh->totarea;
+    gws.hyperplanes.reserve(static_cast<std::size_t>(qh->num_facets));
+    facetT* facet;
+    FORALLfacets {
+      WrenchHyperplane plane;
+      int k = 0;
+      for (int d = 0; d < 6; ++d)
+        if (gws.dimensions[d]) plane.normal[d] = facet->normal[k++];
+      plane.offset = facet->offset;
+      gws.hyperplanes.push_back(plane);
+    }
+  });
+  gws.built = !failure;
+  if (failure) gws.failure = *failure;
+}
+
+}  // namespace
+
 namespace {
 
 // GraspIt!'s qhull options without the output ones ("Pp n"): Qx exact pre-merges, QJ joggled
@@ -51,6 +87,13 @@ bool originClearlyOutside(const std::vector<double>& coords, int dim, double mar
 }
 
 }  // namespace
+
+std::span<const EnumName<WrenchSpaceType>> enumNames(std::type_identity<WrenchSpaceType>) {
+  static constexpr EnumName<WrenchSpaceType> kNames[] = {{WrenchSpaceType::L1, "L1"},
+                                                         {WrenchSpaceType::LInfinity, "Linf"},
+                                                         {WrenchSpaceType::LInfinity, "LInfinity"}};
+  return kNames;
+}
 
 std::vector<Vector6> wrenchSpacePoints(const std::vector<std::vector<Vector6>>& contactWrenches,
                                        WrenchSpaceType type, std::size_t maxPoints) {
@@ -115,13 +158,13 @@ GraspWrenchSpace graspWrenchSpace(const std::vector<std::vector<Vector6>>& conta
   // qhull may joggle a copy, but keep the input intact for a second attempt.
   std::vector<double> input =
       options.type == WrenchSpaceType::LInfinity ? coords : std::vector<double>{};
-  detail::qhullHull(coords, dim, kGraspItOptions, gws);
+  hullOfWrenches(coords, dim, kGraspItOptions, gws);
   if (!gws.built && options.type == WrenchSpaceType::LInfinity) {
     // The Minkowski sum is full of coplanar points, where joggling plus merging often ends in
     // a "wide merge" error (GraspIt! then reports epsilon -1 for a force-closure grasp). Exact
     // pre-merges alone ("Qx") build the true hull.
     const std::string first_failure = gws.failure;
-    detail::qhullHull(input, dim, kLInfinityFallbackOptions, gws);
+    hullOfWrenches(input, dim, kLInfinityFallbackOptions, gws);
     if (!gws.built) gws.failure = first_failure + "; with Qx alone: " + gws.failure;
   }
   return gws;

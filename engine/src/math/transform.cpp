@@ -1,4 +1,4 @@
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +34,19 @@ Transform denavitHartenberg(double theta, double d, double a, double alpha) {
       0, sa, ca;
   t.translation() << a * ct, a * st, d;
   return t;
+}
+
+Matrix3 contactFrame(const Vector3& normal) {
+  // GraspIt! takes the tangent x = n x X, unless n is within 1e-9 (its MACHINE_ZERO) of +-X in
+  // cosine, where n x X vanishes; then x = n x Z, which is well defined there.
+  const Vector3 n = normal.normalized();
+  const Vector3 x = std::abs(n.x()) > 1.0 - 1e-9 ? n.cross(Vector3::UnitZ()).normalized()
+                                                 : n.cross(Vector3::UnitX()).normalized();
+  Matrix3 frame;
+  frame.col(0) = x;
+  frame.col(1) = n.cross(x).normalized();
+  frame.col(2) = n;
+  return frame;
 }
 
 }  // namespace graspkit

@@ -1,4 +1,4 @@
-#include "graspkit/body.hpp"
+#include "graspkit/model/body.hpp"
 
 namespace graspkit {
 

@@ -1,9 +1,9 @@
-#include "graspkit/body_ref.hpp"
+#include "graspkit/model/body_ref.hpp"
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/world.hpp"
 
 namespace graspkit {
 namespace {

@@ -1,4 +1,4 @@
-#include "graspkit/closing_direction.hpp"
+#include "graspkit/model/closing_direction.hpp"
 
 #include <algorithm>
 #include <cmath>

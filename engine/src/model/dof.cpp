@@ -1,4 +1,4 @@
-#include "graspkit/dof.hpp"
+#include "graspkit/model/dof.hpp"
 
 namespace graspkit {
 

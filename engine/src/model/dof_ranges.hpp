@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit::model {
 

@@ -29,7 +29,7 @@
 //   unreachable target; graspkit also requires the final pose error to be within
 //   request.positionTolerance / orientationTolerance.
 
-#include "graspkit/inverse_kinematics.hpp"
+#include "graspkit/model/inverse_kinematics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,9 +38,8 @@
 #include <fmt/format.h>
 #include <Eigen/QR>
 
-#include "graspkit/error.hpp"
-#include "graspkit/robot.hpp"
-#include "graspkit/robot_type.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 
@@ -156,15 +155,6 @@ std::string rangeFailure(const RobotModel& model, const std::vector<int>& drivin
 }
 
 }  // namespace
-
-IkResult inverseKinematics(const Robot& robot, const Transform& target, const IkRequest& request) {
-  if (request.chain < 0 || request.chain >= static_cast<int>(robot.model().chains.size()))
-    throw Error(fmt::format("robot '{}': inverse kinematics of chain {}, robot has {} chains",
-                            robot.name(), request.chain, robot.model().chains.size()));
-  const std::shared_ptr<const RobotType>& type = robot.model().robotType;
-  return type ? type->inverseKinematics(robot, target, request)
-              : iterativeInverseKinematics(robot, target, request);
-}
 
 IkResult iterativeInverseKinematics(const Robot& robot, const Transform& target,
                                     const IkRequest& request) {

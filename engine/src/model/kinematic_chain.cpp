@@ -1,4 +1,4 @@
-#include "graspkit/kinematic_chain.hpp"
+#include "graspkit/model/kinematic_chain.hpp"
 
 namespace graspkit {
 

@@ -1,12 +1,9 @@
-#include "graspkit/material.hpp"
+#include "graspkit/model/material.hpp"
 
 #include <algorithm>
 
 namespace graspkit {
 namespace {
-
-constexpr std::array<std::string_view, kMaterialCount> kNames = {
-    "frictionless", "glass", "metal", "plastic", "wood", "rubber", "stone"};
 
 using Table = std::array<std::array<double, kMaterialCount>, kMaterialCount>;
 
@@ -46,14 +43,15 @@ std::size_t index(Material m) {
 
 }  // namespace
 
-std::string_view materialName(Material material) {
-  return kNames[index(material)];
-}
-
-std::optional<Material> materialFromName(std::string_view name) {
-  auto it = std::find(kNames.begin(), kNames.end(), name);
-  if (it == kNames.end()) return std::nullopt;
-  return static_cast<Material>(it - kNames.begin());
+std::span<const EnumName<Material>> enumNames(std::type_identity<Material>) {
+  static constexpr EnumName<Material> kNames[] = {{Material::Frictionless, "frictionless"},
+                                                  {Material::Glass, "glass"},
+                                                  {Material::Metal, "metal"},
+                                                  {Material::Plastic, "plastic"},
+                                                  {Material::Wood, "wood"},
+                                                  {Material::Rubber, "rubber"},
+                                                  {Material::Stone, "stone"}};
+  return kNames;
 }
 
 double staticFriction(Material a, Material b) {
@@ -66,6 +64,26 @@ double kineticFriction(Material a, Material b) {
 double frictionCoefficient(Material a, Material b, bool dynamic, double relative_speed) {
   return (dynamic && relative_speed > kKineticSpeedThreshold) ? kineticFriction(a, b)
                                                               : staticFriction(a, b);
+}
+
+Colour materialColour(Material material) {
+  switch (material) {
+    case Material::Frictionless:
+      return {0.85f, 0.85f, 0.9f};
+    case Material::Glass:
+      return {0.6f, 0.8f, 0.9f};
+    case Material::Metal:
+      return {0.62f, 0.64f, 0.68f};
+    case Material::Plastic:
+      return {0.9f, 0.7f, 0.35f};
+    case Material::Wood:
+      return {0.7f, 0.5f, 0.3f};
+    case Material::Rubber:
+      return {0.25f, 0.25f, 0.28f};
+    case Material::Stone:
+      return {0.55f, 0.55f, 0.5f};
+  }
+  return {};
 }
 
 }  // namespace graspkit

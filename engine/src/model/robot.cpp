@@ -1,10 +1,10 @@
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
 
@@ -88,8 +88,8 @@ void checkDofVector(const Robot& robot, std::span<const double> values, const ch
   }
   for (std::size_t d = 0; d < values.size(); ++d) {
     if (!std::isfinite(values[d])) {
-      throw Error(fmt::format("robot '{}': DOF {} {} is not a finite number", robot.name(), d,
-                              what));
+      throw Error(
+          fmt::format("robot '{}': DOF {} {} is not a finite number", robot.name(), d, what));
     }
   }
 }

@@ -1,12 +1,12 @@
-#include "graspkit/tendon.hpp"
+#include "graspkit/model/tendon.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 

@@ -1,14 +1,13 @@
-#include "graspkit/virtual_contact.hpp"
+#include "graspkit/model/virtual_contact.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "graspkit/body.hpp"
-#include "graspkit/contact.hpp"
-#include "graspkit/robot.hpp"
-#include "raycast/closest_point.hpp"
+#include "geometry/closest_point.hpp"
+#include "graspkit/model/body.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 
@@ -49,8 +48,8 @@ std::optional<VirtualContact> padContact(const TriangleMesh& mesh, Motion motion
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t t : pad) {
     const auto& tri = mesh.triangles[t];
-    const Vector3 q = raycast::closestPointOnTriangle(centroid, mesh.vertices[tri[0]],
-                                                      mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
+    const Vector3 q = geometry::closestPointOnTriangle(
+        centroid, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
     if ((q - centroid).squaredNorm() < best) {
       best = (q - centroid).squaredNorm();
       nearest = q;

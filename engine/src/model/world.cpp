@@ -1,8 +1,8 @@
-#include "graspkit/world.hpp"
+#include "graspkit/model/world.hpp"
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
 

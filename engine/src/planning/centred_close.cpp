@@ -5,8 +5,8 @@
 #include <optional>
 #include <set>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/collision/collision.hpp"
 #include "graspkit/planning/planning_scene.hpp"
 
 namespace graspkit {

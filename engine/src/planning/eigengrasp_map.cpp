@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 #include <Eigen/QR>
 
-#include "graspkit/error.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 

@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/grasp.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/parallel_for.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/registry.hpp"
 
 namespace graspkit {
 
@@ -141,25 +141,13 @@ PlanningRun runPlanner(Planner& planner, const PlanningBudget& budget) {
 void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& grasps, int threads) {
   if (grasps.empty()) return;
   const auto space = makeSearchSpace(request);
-  const int workers = std::clamp(threads, 1, static_cast<int>(grasps.size()));
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  auto work = [&](int w) {
-    try {
-      // A fresh clone per grasp: nothing one autograsp leaves in the world (broken-away
-      // joints, anything a robot type keeps) may change the next grasp's measure.
-      for (std::size_t i = next++; i < grasps.size(); i = next++)
-        if (!grasps[i].evaluated) finishGrasp(*makePlanningScene(request, space), grasps[i]);
-    } catch (...) {
-      errors[static_cast<std::size_t>(w)] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (std::thread& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  // A fresh clone per grasp: nothing one autograsp leaves in the world (broken-away joints,
+  // anything a robot type keeps) may change the next grasp's measure.
+  parallelFor({.end = static_cast<std::int64_t>(grasps.size()), .threads = threads},
+              [&](int, std::int64_t i) {
+                PlannedGrasp& grasp = grasps[static_cast<std::size_t>(i)];
+                if (!grasp.evaluated) finishGrasp(*makePlanningScene(request, space), grasp);
+              });
 }
 
 std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& request) {
@@ -190,7 +178,14 @@ std::unique_ptr<SearchEnergy> makeSearchEnergy(const PlanningRequest& request) {
     if (!energy) throw Error("the custom search energy's factory made nothing");
     return energy;
   }
-  return Registry::global().makeSearchEnergy(request.energy);
+  if (request.energyByName) return request.energyByName(request.energy);
+  const std::string name = canonicalEnergyName(request.energy);
+  for (auto& [builtin, factory] : builtinSearchEnergies())
+    if (builtin == name) return factory();
+  throw Error(
+      fmt::format("no search energy is called '{}' (a planner made outside the Registry "
+                  "knows only the built-in energies)",
+                  request.energy));
 }
 
 SearchState startState(const PlanningScene& scene) {

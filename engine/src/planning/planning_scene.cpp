@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/collision.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/collision/collision.hpp"
 
 namespace graspkit {
 

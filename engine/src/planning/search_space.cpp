@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 
@@ -81,42 +81,21 @@ Transform ellipsoidPose(double beta, double gamma, double tau, double dist) {
 
 }  // namespace
 
-const char* toString(PositionSpace space) {
-  switch (space) {
-    case PositionSpace::Complete:
-      return "complete";
-    case PositionSpace::AxisAngle:
-      return "axis-angle";
-    case PositionSpace::Ellipsoid:
-      return "ellipsoid";
-    case PositionSpace::Approach:
-      return "approach";
-  }
-  return "?";
+std::span<const EnumName<PostureSpace>> enumNames(std::type_identity<PostureSpace>) {
+  static constexpr EnumName<PostureSpace> kNames[] = {{PostureSpace::Eigen, "eigen"},
+                                                      {PostureSpace::Dof, "dof"},
+                                                      {PostureSpace::Eigen, "POSE_EIGEN"},
+                                                      {PostureSpace::Dof, "POSE_DOF"}};
+  return kNames;
 }
 
-const char* toString(PostureSpace space) {
-  return space == PostureSpace::Eigen ? "eigen" : "dof";
-}
-
-PositionSpace parsePositionSpace(std::string_view text) {
-  for (auto space : {PositionSpace::Complete, PositionSpace::AxisAngle, PositionSpace::Ellipsoid,
-                     PositionSpace::Approach})
-    if (text == toString(space)) return space;
-  if (text == "SPACE_COMPLETE") return PositionSpace::Complete;
-  if (text == "SPACE_AXIS_ANGLE") return PositionSpace::AxisAngle;
-  if (text == "SPACE_ELLIPSOID") return PositionSpace::Ellipsoid;
-  if (text == "SPACE_APPROACH") return PositionSpace::Approach;
-  throw Error(
-      fmt::format("unknown position space '{}'; expected complete, axis-angle, "
-                  "ellipsoid or approach",
-                  text));
-}
-
-PostureSpace parsePostureSpace(std::string_view text) {
-  if (text == "eigen" || text == "POSE_EIGEN") return PostureSpace::Eigen;
-  if (text == "dof" || text == "POSE_DOF") return PostureSpace::Dof;
-  throw Error(fmt::format("unknown posture space '{}'; expected eigen or dof", text));
+std::span<const EnumName<PositionSpace>> enumNames(std::type_identity<PositionSpace>) {
+  static constexpr EnumName<PositionSpace> kNames[] = {
+      {PositionSpace::Complete, "complete"},         {PositionSpace::AxisAngle, "axis-angle"},
+      {PositionSpace::Ellipsoid, "ellipsoid"},       {PositionSpace::Approach, "approach"},
+      {PositionSpace::Complete, "SPACE_COMPLETE"},   {PositionSpace::AxisAngle, "SPACE_AXIS_ANGLE"},
+      {PositionSpace::Ellipsoid, "SPACE_ELLIPSOID"}, {PositionSpace::Approach, "SPACE_APPROACH"}};
+  return kNames;
 }
 
 SearchSpace::SearchSpace(const RobotModel& hand, PositionSpace position, PostureSpace posture,

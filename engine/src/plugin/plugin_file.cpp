@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/io/utf8.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/plugin.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/base/utf8.hpp"
+#include "graspkit/plugin/plugin.hpp"
 
 namespace graspkit::plugin {
 
@@ -120,7 +120,7 @@ PluginInfo commitPlugin(Registry& registry, OpenedPlugin opened,
   // Check everything before committing anything.
   std::set<std::pair<FactoryKind, std::string>> names;
   for (const auto& item : opened.staging.staged) {
-    const char* kind = toString(item.kind);
+    const std::string_view kind = nameOf(item.kind);
     if (item.name.empty()) return fail(fmt::format("registers a {} with no name", kind));
     if (firstInvalidUtf8(item.name))
       return fail(fmt::format("registers a {} whose name is not UTF-8 text", kind));

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/plugin_loader.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace graspkit::plugin {
 

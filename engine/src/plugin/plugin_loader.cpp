@@ -1,4 +1,4 @@
-#include "graspkit/plugin_loader.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -11,10 +11,10 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "plugin/plugin_file.hpp"
 #include "plugin/plugin_probe.hpp"
 
@@ -48,7 +48,7 @@ fs::path engineLibraryFolder() {
 std::string describeProvides(const PluginInfo& info) {
   std::string text;
   for (const auto& [kind, name] : info.provides)
-    text += fmt::format("{}{} {}", text.empty() ? "" : ", ", toString(kind), name);
+    text += fmt::format("{}{} {}", text.empty() ? "" : ", ", nameOf(kind), name);
   return text;
 }
 
@@ -270,7 +270,7 @@ std::vector<PluginInfo> PluginLoader::survey() {
       else if (const auto other = factories.find(item); other != factories.end())
         owner = other->second;
       if (!owner.empty()) {
-        refuse(fmt::format("provides {} '{}', already provided by {}", toString(item.first),
+        refuse(fmt::format("provides {} '{}', already provided by {}", nameOf(item.first),
                            item.second, owner));
         break;
       }

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "plugin/plugin_file.hpp"
 
 namespace graspkit::plugin {

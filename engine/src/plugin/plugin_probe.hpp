@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "graspkit/plugin_loader.hpp"
+#include "graspkit/plugin/plugin_loader.hpp"
 
 namespace graspkit::plugin {
 

@@ -1,36 +1,27 @@
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "graspkit/error.hpp"
-#include "plugin/builtins.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit {
-
-const char* toString(FactoryKind kind) {
-  switch (kind) {
-    case FactoryKind::RobotType:
-      return "robot type";
-    case FactoryKind::QualityMeasure:
-      return "quality measure";
-    case FactoryKind::SearchEnergy:
-      return "search energy";
-    case FactoryKind::Planner:
-      return "planner";
-  }
-  return "factory";
-}
 
 std::string Provenance::describe() const {
   if (plugin.empty()) return "built in";
   return version.empty() ? plugin : plugin + " " + version;
 }
 
+// The built-ins are registered here, by the registry itself: the modules below only say what
+// they provide, so none of them depends on the registry.
 Registry::Registry() : loader_(*this) {
-  addBuiltinRobotTypes(*this);
-  addBuiltinQualityMeasures(*this);
-  addBuiltinSearchEnergies(*this);
+  // "Robot" (an arm, no hand behaviour) and "Hand" differ only in RobotModel::isHand, which the
+  // robot file reader sets from the type name; both behave generically.
+  auto generic = [] { return std::make_shared<const RobotType>(); };
+  addRobotType("Robot", generic);
+  addRobotType("Hand", generic);
+  for (auto& [name, factory] : builtinQualityMeasures()) addQualityMeasure(name, factory);
+  for (auto& [name, factory] : builtinSearchEnergies()) addSearchEnergy(name, factory);
 }
 
 Registry& Registry::global() {
@@ -39,11 +30,11 @@ Registry& Registry::global() {
 }
 
 void Registry::add(FactoryKind kind, const std::string& name, Entry entry) {
-  if (name.empty()) throw Error(fmt::format("a {} needs a name", toString(kind)));
+  if (name.empty()) throw Error(fmt::format("a {} needs a name", nameOf(kind)));
   std::lock_guard lock(mutex_);
   auto [it, inserted] = entries_.try_emplace(Key{kind, name}, std::move(entry));
   if (!inserted)
-    throw Error(fmt::format("{} '{}' is already provided by {}", toString(kind), name,
+    throw Error(fmt::format("{} '{}' is already provided by {}", nameOf(kind), name,
                             it->second.from.describe()));
 }
 
@@ -122,6 +113,15 @@ auto callFactory(std::string_view what, const Provenance& from, Factory&& factor
 
 }  // namespace
 
+std::span<const EnumName<FactoryKind>> enumNames(std::type_identity<FactoryKind>) {
+  static constexpr EnumName<FactoryKind> kNames[] = {
+      {FactoryKind::RobotType, "robot type"},
+      {FactoryKind::QualityMeasure, "quality measure"},
+      {FactoryKind::SearchEnergy, "search energy"},
+      {FactoryKind::Planner, "planner"}};
+  return kNames;
+}
+
 std::optional<Registry::Entry> Registry::find(FactoryKind kind, const std::string& name) {
   std::lock_guard lock(mutex_);
   auto it = entries_.find(Key{kind, name});
@@ -134,7 +134,7 @@ std::optional<Registry::Entry> Registry::find(FactoryKind kind, const std::strin
 void Registry::throwUnknown(FactoryKind kind, const std::string& name) {
   loader_.loadAll();  // so the message lists everything the path offers
   std::string message =
-      fmt::format("unknown {} '{}'; available: {}; plugin search path: {}", toString(kind), name,
+      fmt::format("unknown {} '{}'; available: {}; plugin search path: {}", nameOf(kind), name,
                   fmt::join(names(kind), ", "), loader_.describeSearchPath());
   for (const PluginInfo& failed : loader_.failures())
     message += fmt::format("; plugin {} failed to load: {}", failed.file.string(), failed.error);
@@ -182,12 +182,27 @@ std::unique_ptr<Planner> Registry::makePlanner(const std::string& name,
                                                const PlanningRequest& request) {
   std::optional<Entry> entry = find(FactoryKind::Planner, name);
   if (!entry) throwUnknown(FactoryKind::Planner, name);
+  PlanningRequest resolved = request;
+  if (!resolved.energyByName)
+    resolved.energyByName = [this](const std::string& energy) { return makeSearchEnergy(energy); };
   std::unique_ptr<Planner> planner = callFactory(fmt::format("planner '{}'", name), entry->from,
-                                                 [&] { return entry->planner(request); });
+                                                 [&] { return entry->planner(resolved); });
   if (!planner)
     throw Error(
         fmt::format("the factory of planner '{}' ({}) made nothing", name, entry->from.describe()));
   return planner;
+}
+
+void registerQualityMeasure(const std::string& name, QualityMeasureFactory factory) {
+  Registry::global().addQualityMeasure(name, std::move(factory));
+}
+
+std::unique_ptr<QualityMeasure> makeQualityMeasure(const std::string& name) {
+  return Registry::global().makeQualityMeasure(name);
+}
+
+std::vector<std::string> qualityMeasureNames() {
+  return Registry::global().names(FactoryKind::QualityMeasure);
 }
 
 }  // namespace graspkit

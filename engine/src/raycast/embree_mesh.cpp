@@ -5,8 +5,8 @@
 #include <mutex>
 #include <unordered_map>
 
-#include "graspkit/error.hpp"
-#include "raycast/closest_point.hpp"
+#include "geometry/closest_point.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit::raycast {
 
@@ -100,7 +100,7 @@ bool visitNearest(RTCPointQueryFunctionArguments* args) {
   auto* search = static_cast<NearestSearch*>(args->userPtr);
   const auto& t = search->mesh->triangles[args->primID];
   const auto& v = search->mesh->vertices;
-  const Vector3 p = closestPointOnTriangle(search->center, v[t[0]], v[t[1]], v[t[2]]);
+  const Vector3 p = geometry::closestPointOnTriangle(search->center, v[t[0]], v[t[1]], v[t[2]]);
   const double d = (p - search->center).norm();
   if (!(d < search->best)) return false;
   search->best = d;

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "graspkit/mesh.hpp"
+#include "graspkit/geometry/mesh.hpp"
 
 namespace graspkit::raycast {
 

@@ -1,13 +1,13 @@
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "graspkit/error.hpp"
-#include "graspkit/world.hpp"
-#include "raycast/closest_point.hpp"
+#include "geometry/closest_point.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/world.hpp"
 #include "raycast/embree_mesh.hpp"
 #include "raycast/scene_access.hpp"
 
@@ -312,8 +312,8 @@ bool visitWorld(RTCPointQueryFunctionArguments* args) {
   }
   const TriangleMesh& mesh = instance.mesh->mesh();
   const auto& t = mesh.triangles[args->primID];
-  const Vector3 p = raycast::closestPointOnTriangle(search->local, mesh.vertices[t[0]],
-                                                    mesh.vertices[t[1]], mesh.vertices[t[2]]);
+  const Vector3 p = geometry::closestPointOnTriangle(search->local, mesh.vertices[t[0]],
+                                                     mesh.vertices[t[1]], mesh.vertices[t[2]]);
   const double d = (p - search->local).norm();
   if (!(d < search->best)) return false;
   search->best = d;

@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/ray_scene.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 namespace graspkit::raycast {
 

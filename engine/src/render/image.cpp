@@ -1,6 +1,6 @@
 // PNG through libpng: encoded into memory, then written with writeFileAtomically, so a render
 // never leaves half a picture behind.
-#include "graspkit/image.hpp"
+#include "graspkit/render/image.hpp"
 
 #include <algorithm>
 #include <csetjmp>
@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 #include <png.h>
 
-#include "graspkit/error.hpp"
-#include "graspkit/io/output_file.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/output_file.hpp"
 
 namespace graspkit {
 

@@ -3,7 +3,7 @@
 // only a hit's body, triangle and facing, not RayScene's checked double-precision hits); each
 // hit is shaded as it comes back. Contact markers are shapes of their own (a sphere and a cone
 // per contact), intersected in closed form after the scene.
-#include "graspkit/render.hpp"
+#include "graspkit/render/render.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/ray_scene.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 #include "raycast/scene_access.hpp"
 
 namespace graspkit {
@@ -129,26 +129,6 @@ std::optional<Eigen::Vector2d> projectPoint(const ViewCamera& camera, int width,
   const double x = local.x() / -local.z() / (scale * aspect);
   const double y = local.y() / -local.z() / scale;
   return Eigen::Vector2d((x + 1.0) * 0.5 * width, (1.0 - y) * 0.5 * height);
-}
-
-Colour materialColour(Material material) {
-  switch (material) {
-    case Material::Frictionless:
-      return {0.85f, 0.85f, 0.9f};
-    case Material::Glass:
-      return {0.6f, 0.8f, 0.9f};
-    case Material::Metal:
-      return {0.62f, 0.64f, 0.68f};
-    case Material::Plastic:
-      return {0.9f, 0.7f, 0.35f};
-    case Material::Wood:
-      return {0.7f, 0.5f, 0.3f};
-    case Material::Rubber:
-      return {0.25f, 0.25f, 0.28f};
-    case Material::Stone:
-      return {0.55f, 0.55f, 0.5f};
-  }
-  return {};
 }
 
 namespace {

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cstdint>
 
-#include "graspkit/image.hpp"
+#include "graspkit/render/image.hpp"
 
 namespace graspkit {
 

@@ -7,11 +7,12 @@
 #include <fmt/format.h>
 
 #include "approach_samples.hpp"
-#include "graspkit/autograsp.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/grasp/autograsp.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/ray_scene.hpp"
-#include "sample_workers.hpp"
+#include "graspkit/planning/scene_pool.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
+#include "sampling.hpp"
 
 namespace graspkit::approach {
 
@@ -91,13 +92,13 @@ class ApproachPlanner final : public Planner {
       throw Error(fmt::format(
           "approach: the {} position space cannot hold the poses this planner finds; use "
           "complete or axis-angle",
-          toString(request.position)));
+          nameOf(request.position)));
     if (request.threads < 1)
       throw Error(fmt::format("approach: {} threads is not valid", request.threads));
     if (request.bestListSize < 1)
       throw Error(fmt::format("approach: a best list of {} is not valid", request.bestListSize));
     settings_ = settingsFrom(request);
-    workers_ = std::make_unique<planners::SampleWorkers>(request, space_);
+    workers_ = std::make_unique<ScenePool>(request, space_);
     PlanningScene& scene = workers_->scene(0);
     open_ = openDofs(scene.hand(), *space_);
     samples_ = makeSamples(scene, handReach(scene, open_));
@@ -107,7 +108,7 @@ class ApproachPlanner final : public Planner {
     const auto total = static_cast<std::int64_t>(samples_.size());
     // A step of fewer samples than workers would leave workers idle: take at least one each.
     const std::int64_t end =
-        std::min(total, next_ + std::max<std::int64_t>(steps, workers_->size()));
+        std::min(total, next_ + std::max<std::int64_t>(steps, workers_->capacity()));
     std::vector<std::optional<SearchState>> results(static_cast<std::size_t>(end - next_));
     workers_->run(next_, end, [&](int w, std::int64_t i) {
       results[static_cast<std::size_t>(i - next_)] =
@@ -189,7 +190,7 @@ class ApproachPlanner final : public Planner {
 
   std::shared_ptr<const SearchSpace> space_;
   Settings settings_;
-  std::unique_ptr<planners::SampleWorkers> workers_;
+  std::unique_ptr<ScenePool> workers_;
   std::vector<double> open_;
   std::vector<Sample> samples_;
   planners::RankedStates ranked_;

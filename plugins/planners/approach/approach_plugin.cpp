@@ -2,8 +2,8 @@
 // from evenly spread directions.
 
 #include "approach_planner.hpp"
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

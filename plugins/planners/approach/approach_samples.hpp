@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::approach {
 

@@ -1,5 +1,5 @@
 #include "hand_state_file.hpp"
-#include "graspkit/io/input_file.hpp"
+#include "graspkit/base/input_file.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 
 namespace graspkit::list {
 

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
 
 namespace graspkit::list {
 

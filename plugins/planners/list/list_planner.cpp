@@ -4,10 +4,11 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/planning/scene_pool.hpp"
 #include "hand_state_file.hpp"
-#include "sample_workers.hpp"
+#include "sampling.hpp"
 
 namespace graspkit::list {
 
@@ -23,7 +24,7 @@ std::vector<std::vector<double>> requestStates(const PlanningRequest& request,
     const auto& v = request.states[i].values;
     if (static_cast<int>(v.size()) != space.size())
       throw Error(fmt::format("list: states[{}] has {} values; the {}/{} space has {}", i, v.size(),
-                              toString(space.positionSpace()), toString(space.postureSpace()),
+                              nameOf(space.positionSpace()), nameOf(space.postureSpace()),
                               space.size()));
     values.push_back(v);
   }
@@ -52,7 +53,7 @@ std::vector<std::vector<double>> fileStates(const std::string& file, const Searc
           "list: {}: entry {}: the {}/{} search space cannot represent this hand state (a pose "
           "outside its ranges, DOFs outside their limits or, for eigen postures, off the "
           "eigengrasp subspace); try --space complete or --posture dof",
-          file, i, toString(space.positionSpace()), toString(space.postureSpace())));
+          file, i, nameOf(space.positionSpace()), nameOf(space.postureSpace())));
     values.push_back(std::move(*encoded));
   }
   return values;
@@ -77,14 +78,14 @@ class ListPlanner final : public Planner {
       throw Error(
           "list: no hand states to evaluate: give the request's states or the option "
           "file=FILE");
-    workers_ = std::make_unique<planners::SampleWorkers>(request, space_);
+    workers_ = std::make_unique<ScenePool>(request, space_);
   }
 
   void step(std::int64_t steps) override {
     const auto total = static_cast<std::int64_t>(inputs_.size());
     // A step of fewer states than workers would leave workers idle: take at least one each.
     const std::int64_t end =
-        std::min(total, next_ + std::max<std::int64_t>(steps, workers_->size()));
+        std::min(total, next_ + std::max<std::int64_t>(steps, workers_->capacity()));
     std::vector<std::optional<double>> energies(static_cast<std::size_t>(end - next_));
     workers_->run(next_, end, [&](int w, std::int64_t i) {
       energies[static_cast<std::size_t>(i - next_)] = evaluateState(
@@ -109,7 +110,7 @@ class ListPlanner final : public Planner {
  private:
   std::shared_ptr<const SearchSpace> space_;
   std::vector<std::vector<double>> inputs_;
-  std::unique_ptr<planners::SampleWorkers> workers_;
+  std::unique_ptr<ScenePool> workers_;
   planners::RankedStates ranked_;
   std::int64_t next_ = 0;
 };

@@ -1,7 +1,7 @@
 // The list plugin: GraspIt!'s list planner, which ranks a given list of hand states.
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "list_planner.hpp"
 
 namespace {

@@ -14,9 +14,10 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
 #include "graspkit/planning/distinct_grasps.hpp"
 #include "graspkit/planning/planning_scene.hpp"
+#include "graspkit/planning/scene_pool.hpp"
 
 namespace graspkit::simann {
 
@@ -44,18 +45,18 @@ class RestartPlanner final : public Planner {
       throw Error(fmt::format("simann: {} threads is not valid", request.threads));
     if (request.bestListSize < 1)
       throw Error(fmt::format("simann: a best list of {} is not valid", request.bestListSize));
-    scenes_.push_back(makePlanningScene(request, space_));  // checks robot and object
-    const double radius = scenes_.front()->objectRadius();
+    // Worker 0's scene and energy: checks the robot, the object and the energy now, not inside
+    // a worker.
+    pool_ = std::make_unique<ScenePool>(request, space_);
+    const double radius = pool_->scene(0).objectRadius();
     kept_ = DistinctGrasps(settings.threshold, [space = space_, radius](std::span<const double> a,
                                                                         std::span<const double> b) {
       return space->distance(a, b, radius);
     });
-    worldStart_ = request.states.empty() ? startState(*scenes_.front()) : request.states.front();
+    worldStart_ = request.states.empty() ? startState(pool_->scene(0)) : request.states.front();
     if (static_cast<int>(worldStart_.values.size()) != space_->size())
       throw Error(fmt::format("simann: the start state has {} values; the {} space has {}",
-                              worldStart_.values.size(), toString(request.position),
-                              space_->size()));
-    makeSearchEnergy(request);  // an unknown energy fails now, not inside a worker
+                              worldStart_.values.size(), nameOf(request.position), space_->size()));
     if (settings.refineSteps > 0) makeSearchEnergy(refineRequest());
   }
 
@@ -94,7 +95,7 @@ class RestartPlanner final : public Planner {
   PlanningRequest request_;
   RestartSettings settings_;
   std::shared_ptr<const SearchSpace> space_;
-  std::vector<std::shared_ptr<PlanningScene>> scenes_;  // one per worker thread
+  std::unique_ptr<ScenePool> pool_;  // a scene per worker thread
   SearchState worldStart_;
   DistinctGrasps kept_;
   std::int64_t merged_ = 0;  // restarts 0 .. merged_ - 1 are in kept_
@@ -233,13 +234,6 @@ void RestartPlanner::run(const PlanningBudget& budget) {
       budget.steps ? first + (std::max<std::int64_t>(*budget.steps, 0) + cost - 1) / cost
                    : std::numeric_limits<std::int64_t>::max();
   if (end <= first) return;
-  // A custom energy (a Lua function) need not be thread-safe: it gets one worker, the caller.
-  const int workers = static_cast<int>(
-      std::min<std::int64_t>(request_.customEnergy ? 1 : request_.threads, end - first));
-  while (static_cast<int>(scenes_.size()) < workers)
-    scenes_.push_back(makePlanningScene(request_, space_));
-
-  std::atomic<std::int64_t> next{first};
   std::atomic<bool> stop{false};
   std::mutex mutex;  // guards pending, kept_ and merged_
   std::map<std::int64_t, std::vector<PlannedGrasp>> pending;
@@ -291,26 +285,18 @@ void RestartPlanner::run(const PlanningBudget& budget) {
     }
     return true;
   };
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  auto work = [&](int w) {
-    try {
-      const std::function<bool()> going = [&keepGoing, w] { return keepGoing(w); };
-      for (std::int64_t i = next++; i < end && going(); i = next++) {
-        auto grasps = restart(scenes_[static_cast<std::size_t>(w)], i, going);
-        if (!grasps) break;
-        merge(i, std::move(*grasps));
-      }
-    } catch (...) {
-      errors[static_cast<std::size_t>(w)] = std::current_exception();
+  // The pool gives each worker its scene (a custom energy, which need not be thread-safe, gets
+  // one worker: the caller); a worker whose restart was cut short takes no more.
+  auto job = [&](int w, std::int64_t i) {
+    const std::function<bool()> going = [&keepGoing, w] { return keepGoing(w); };
+    auto grasps = restart(pool_->sharedScene(w), i, going);
+    if (!grasps) {
       stop = true;
+      return;
     }
+    merge(i, std::move(*grasps));
   };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (std::thread& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  pool_->run(first, end, job, keepGoing);
 }
 
 }  // namespace

@@ -10,9 +10,10 @@
 #include <fmt/format.h>
 
 #include "annealing_chain.hpp"
-#include "graspkit/error.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/parallel_for.hpp"
 #include "graspkit/planning/planning_scene.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "restart_planner.hpp"
 
 namespace graspkit::simann {
@@ -113,27 +114,6 @@ Settings settingsFrom(const PlanningRequest& request) {
   return s;
 }
 
-// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first error.
-template <typename Job>
-void parallelFor(int count, int threads, Job job) {
-  const int workers = std::clamp(threads, 1, std::max(count, 1));
-  std::atomic<int> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  auto work = [&](int w) {
-    try {
-      for (int i = next++; i < count; i = next++) job(i);
-    } catch (...) {
-      errors[static_cast<std::size_t>(w)] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (std::thread& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
-
 class SimAnnPlanner final : public Planner {
  public:
   explicit SimAnnPlanner(const PlanningRequest& request)
@@ -147,7 +127,7 @@ class SimAnnPlanner final : public Planner {
       SearchState start = request.states.empty() ? startState(*scene) : request.states.front();
       if (static_cast<int>(start.values.size()) != space_->size())
         throw Error(fmt::format("simann: the start state has {} values; the {} space has {}",
-                                start.values.size(), toString(request.position), space_->size()));
+                                start.values.size(), nameOf(request.position), space_->size()));
       start.energy = kUnevaluatedEnergy;
       chains_.push_back(std::make_unique<AnnealingChain>(
           std::move(scene), makeSearchEnergy(request), settings_.search, chainSeed(request.seed, c),
@@ -160,7 +140,7 @@ class SimAnnPlanner final : public Planner {
     const int count = static_cast<int>(chains_.size());
     // Chain c's share of the total depends only on the total, so a step budget gives the same
     // result however runPlanner chunks it.
-    parallelFor(count, count, [&](int c) {
+    parallelFor({.end = count, .threads = count}, [&](int, std::int64_t c) {
       const std::int64_t share = target_ / count + (c < target_ % count ? 1 : 0);
       chains_[static_cast<std::size_t>(c)]->runTo(share);
     });

@@ -1,7 +1,7 @@
 // The simann plugin: GraspIt!'s eigengrasp simulated-annealing planner.
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 #include "simann_planner.hpp"
 
 namespace {

@@ -4,10 +4,10 @@
 
 #include <fmt/format.h>
 
-#include "graspkit/log.hpp"
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 // HumanHand is a hand whose file also lists tendons (routes of insertion points on links) and
 // tendon wrappers (cylinders on links the tendons wrap around). The engine reads them into
 // RobotModel::tendons and tendonWrappers and provides their geometry and statics
-// (graspkit/tendon.hpp: tendonPath, tendonLength, tendonRestLength, tendonForce,
+// (graspkit/model/tendon.hpp: tendonPath, tendonLength, tendonRestLength, tendonForce,
 // insertionForces, tendonJointTorques), so this type only checks that the tendons are usable.
 // Its collision rules are the file's: GraspIt!'s HumanHand adds no exclusion of its own.
 //
@@ -18,11 +18,11 @@
 #include <set>
 #include <string>
 
-#include "graspkit/error.hpp"
-#include "graspkit/log.hpp"
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

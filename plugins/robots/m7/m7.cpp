@@ -2,9 +2,9 @@
 // every pair within a chain (the engine excludes the latter for all robots already); for
 // M7Tool, the first links of its two chains.
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

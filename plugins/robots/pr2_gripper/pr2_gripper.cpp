@@ -20,13 +20,13 @@
 
 #include <vector>
 
-#include "graspkit/autograsp.hpp"
-#include "graspkit/collision.hpp"
-#include "graspkit/error.hpp"
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/collision/collision.hpp"
+#include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/model/world.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

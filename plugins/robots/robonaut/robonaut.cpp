@@ -1,9 +1,9 @@
 // NASA's Robonaut hand: a generic hand whose palm overlaps the second link of its first chain
 // (the thumb), so GraspIt! excludes that pair from collisions.
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

@@ -2,9 +2,9 @@
 // meshes overlap at rest: the palm with chain 4's second link (the thumb), and the first links
 // of chains 0 and 1.
 
-#include "graspkit/plugin.hpp"
-#include "graspkit/registry.hpp"
-#include "graspkit/robot.hpp"
+#include "graspkit/model/robot.hpp"
+#include "graspkit/plugin/plugin.hpp"
+#include "graspkit/plugin/registry.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "graspkit/eigengrasp.hpp"
+#include "graspkit/model/eigengrasp.hpp"
 
 namespace graspkit {
 

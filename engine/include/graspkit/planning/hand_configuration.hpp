@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "graspkit/robot.hpp"
-#include "graspkit/transform.hpp"
+#include "graspkit/math/transform.hpp"
+#include "graspkit/model/robot.hpp"
 
 namespace graspkit {
 

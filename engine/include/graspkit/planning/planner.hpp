@@ -18,13 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/body_ref.hpp"
-#include "graspkit/contact.hpp"
+#include "graspkit/collision/contact.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/world.hpp"
 #include "graspkit/planning/hand_configuration.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_space.hpp"
 #include "graspkit/planning/search_state.hpp"
-#include "graspkit/world.hpp"
 
 namespace graspkit {
 
@@ -40,6 +40,9 @@ struct PlanningRequest {
   // An energy given in code (e.g. a Lua function); used instead of `energy` when set. A
   // planner calls it from one thread only, so it need not be thread-safe.
   SearchEnergyFactory customEnergy;
+  // Where `energy` is looked up by name. Registry::makePlanner sets it to the registry (so a
+  // plugin's energies are found); unset, only the built-in energies are (search_energy.hpp).
+  std::function<std::unique_ptr<SearchEnergy>(const std::string& name)> energyByName;
   std::uint64_t seed = 1;
   int threads = 1;
   int bestListSize = 20;
@@ -141,7 +144,8 @@ std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& reques
 // A PlanningScene on a clone of the request's world. Throws graspkit::Error for a bad request.
 std::unique_ptr<PlanningScene> makePlanningScene(const PlanningRequest& request,
                                                  std::shared_ptr<const SearchSpace> space);
-// The request's energy: its custom energy, or the registry's by name.
+// The request's energy: its custom energy, else its `energy` by name through energyByName, else
+// a built-in energy of that name. Throws graspkit::Error for an unknown name.
 std::unique_ptr<SearchEnergy> makeSearchEnergy(const PlanningRequest& request);
 // The start state: the hand where the world has it, encoded in the space (the middle of each
 // range for the ellipsoid space).

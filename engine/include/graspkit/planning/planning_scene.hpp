@@ -10,13 +10,13 @@
 #include <span>
 #include <vector>
 
-#include "graspkit/body_ref.hpp"
+#include "graspkit/model/body_ref.hpp"
+#include "graspkit/model/virtual_contact.hpp"
+#include "graspkit/model/world.hpp"
 #include "graspkit/planning/hand_configuration.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_space.hpp"
-#include "graspkit/ray_scene.hpp"
-#include "graspkit/virtual_contact.hpp"
-#include "graspkit/world.hpp"
+#include "graspkit/raycast/ray_scene.hpp"
 
 namespace graspkit {
 

@@ -52,4 +52,8 @@ using SearchEnergyFactory = std::function<std::unique_ptr<SearchEnergy>()>;
 // name unchanged.
 std::string canonicalEnergyName(std::string_view name);
 
+// GraspIt!'s energies under graspkit's names (contact, potential-quality, ...), with their
+// factories: the Registry (plugin/registry.hpp) starts with them, and plugins add more there.
+std::vector<std::pair<std::string, SearchEnergyFactory>> builtinSearchEnergies();
+
 }  // namespace graspkit

@@ -12,8 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "graspkit/base/enum_names.hpp"
+#include "graspkit/math/transform.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
-#include "graspkit/transform.hpp"
 
 namespace graspkit {
 
@@ -31,12 +32,11 @@ enum class PostureSpace {
   Dof,    // DOF values (the DOF's range, jump = range / 2)
 };
 
-// "complete", "axis-angle", "ellipsoid", "approach"; "eigen", "dof". Parsing also accepts
-// GraspIt!'s names (SPACE_AXIS_ANGLE, POSE_EIGEN, ...); throws graspkit::Error otherwise.
-const char* toString(PositionSpace space);
-const char* toString(PostureSpace space);
-PositionSpace parsePositionSpace(std::string_view text);
-PostureSpace parsePostureSpace(std::string_view text);
+// "complete", "axis-angle", "ellipsoid", "approach"; "eigen", "dof". GraspIt!'s names
+// (SPACE_AXIS_ANGLE, POSE_EIGEN, ...) are accepted too (base/enum_names.hpp: nameOf, valueNamed,
+// parseNamed).
+std::span<const EnumName<PositionSpace>> enumNames(std::type_identity<PositionSpace>);
+std::span<const EnumName<PostureSpace>> enumNames(std::type_identity<PostureSpace>);
 
 struct SearchVariable {
   std::string name;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "graspkit/io/load_options.hpp"
+#include "graspkit/io/common/load_options.hpp"
 #include "graspkit/lua/sandbox.hpp"
 
 struct lua_State;

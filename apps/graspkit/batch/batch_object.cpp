@@ -1,0 +1,166 @@
+// One object of graspkit batch: the hand over the object, a plan, its grasps closed, measured and
+// optionally validated, the dataset written; all in a forked child, whose one-line JSON report
+// comes back through a pipe.
+
+#include "batch/batch_object.hpp"
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <iostream>
+
+#include "graspkit/base/error.hpp"
+#include "graspkit/dataset/dataset_planning.hpp"
+#include "graspkit/io/dataset/grasp_dataset_file.hpp"
+
+namespace graspkit::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+json outcomeJson(const ObjectOutcome& o) {
+  return {{"done", o.done},     {"error", o.error},
+          {"grasps", o.grasps}, {"force_closure", o.forceClosure},
+          {"held", o.held},     {"seconds", o.seconds}};
+}
+
+ObjectOutcome outcomeFromJson(const json& j) {
+  ObjectOutcome o;
+  o.done = j.value("done", false);
+  o.error = j.value("error", "");
+  o.grasps = j.value("grasps", 0);
+  o.forceClosure = j.value("force_closure", 0);
+  o.held = j.value("held", 0);
+  o.seconds = j.value("seconds", 0.0);
+  return o;
+}
+
+namespace {
+
+DatasetRequest datasetRequest(const BatchOptions& options, const fs::path& object_file) {
+  DatasetRequest request;
+  request.hand = options.hand;
+  request.object = object_file;
+  request.load = options.load.options();
+  request.grasps = options.grasps;
+  if (options.secondsPerObject)
+    request.seconds = *options.secondsPerObject;
+  else
+    request.steps = options.steps;
+  request.validate = options.validate;
+  request.validateSeconds = options.validateSeconds;
+  request.seed = options.seed;
+  return request;
+}
+
+// Once an object's dataset is in place, any temporary of it is a killed writer's leftover: one
+// object has one writer at a time, and a writer dies with the process that started it.
+void removeEarlierTemporaries(const fs::path& dataset) {
+  const std::string prefix = "." + dataset.filename().string() + ".";
+  std::error_code missing;
+  for (const auto& entry : fs::directory_iterator(dataset.parent_path(), missing)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(prefix) && entry.path().extension() == ".tmp") {
+      std::error_code ignored;
+      fs::remove(entry.path(), ignored);
+    }
+  }
+}
+
+}  // namespace
+
+ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
+                        const fs::path& out, const std::function<void()>& while_waiting) {
+  const auto start = Clock::now();
+  int channel[2];
+  if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t parent = ::getpid();
+  const pid_t child = ::fork();
+  if (child < 0) throw Error("batch: cannot start a process for an object");
+  if (child == 0) {
+    // Dies with its parent: a killed rank must not leave a child that goes on writing into the
+    // output folder while the run is started again.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(1);
+    ::close(channel[0]);
+    json summary;
+    int status = 0;
+    try {
+      const GraspDataset dataset = planGraspDataset(datasetRequest(options, object_file));
+      saveGraspDataset(dataset, out);
+      int fc = 0, held = 0;
+      for (const DatasetGrasp& g : dataset.grasps) {
+        fc += g.forceClosure ? 1 : 0;
+        held += g.held == 1 ? 1 : 0;
+      }
+      summary = {{"grasps", dataset.grasps.size()}, {"force_closure", fc}, {"held", held}};
+    } catch (const std::exception& e) {
+      summary = {{"error", e.what()}};
+      status = 1;
+    }
+    const std::string text = summary.dump() + "\n";
+    [[maybe_unused]] const auto written = ::write(channel[1], text.data(), text.size());
+    ::close(channel[1]);
+    std::fflush(nullptr);
+    ::_exit(status);
+  }
+  ::close(channel[0 + 1]);
+  std::string text;
+  bool timed_out = false;
+  const double limit = options.objectTimeout;
+  for (;;) {
+    const double left = limit - std::chrono::duration<double>(Clock::now() - start).count();
+    if (left <= 0) {
+      timed_out = true;
+      ::kill(child, SIGKILL);
+      break;
+    }
+    if (while_waiting) while_waiting();
+    pollfd p{channel[0], POLLIN, 0};
+    const double wait = while_waiting ? 0.005 : 1.0;
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, wait) * 1000) + 1);
+    if (ready <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ObjectOutcome outcome;
+  outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (timed_out) {
+    outcome.error = fmt::format("timed out after {:g} s (--object-timeout)", limit);
+  } else if (WIFSIGNALED(status)) {
+    outcome.error = fmt::format("the object's process died of signal {} ({})", WTERMSIG(status),
+                                strsignal(WTERMSIG(status)));
+  } else {
+    const json summary = json::parse(text, nullptr, false);
+    if (summary.is_discarded() || !summary.is_object()) {
+      outcome.error = fmt::format("the object's process ended ({}) without a report",
+                                  WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    } else if (summary.contains("error")) {
+      outcome.error = summary["error"].get<std::string>();
+    } else {
+      outcome.done = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(out);
+      outcome.grasps = summary.value("grasps", 0);
+      outcome.forceClosure = summary.value("force_closure", 0);
+      outcome.held = summary.value("held", 0);
+      if (!outcome.done) outcome.error = "the object's process wrote no dataset file";
+    }
+  }
+  if (outcome.done) removeEarlierTemporaries(out);
+  return outcome;
+}
+
+}  // namespace graspkit::cli

@@ -1,0 +1,448 @@
+// graspkit batch: plan (and optionally validate) grasps on many objects with one hand, one HDF5
+// dataset file per object (io/grasp_dataset_file.hpp), with a manifest that makes a re-run
+// resume. Each object runs in a child process (batch_object.cpp), so that a crash, a hang or an
+// error on one object is recorded against it and the batch goes on; under mpirun the objects are
+// shared over the ranks (batch_mpi.cpp).
+
+#include <fmt/format.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "batch/batch_mpi.hpp"
+#include "batch/batch_object.hpp"
+#include "commands/batch_command.hpp"
+#include "graspkit/base/error.hpp"
+#include "graspkit/base/input_file.hpp"
+#include "graspkit/base/output_file.hpp"
+#include "graspkit/base/utf8.hpp"
+#include "graspkit/base/version.hpp"
+#include "graspkit/io/dataset/grasp_dataset_file.hpp"
+#include "support/argument_checks.hpp"
+#include "support/process_runs.hpp"
+#include "support/progress_reporter.hpp"
+
+namespace graspkit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int kManifestVersion = 1;
+constexpr int kMaxAttempts = 2;  // a failed object is retried once
+
+struct Shard {
+  int index = 0;  // 0-based
+  int count = 1;
+};
+
+// A whole number from 1 to kMaxShards written as one, or nullopt.
+constexpr long long kMaxShards = 1'000'000;
+std::optional<int> shardNumber(std::string_view text) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value < 0 ||
+      value > kMaxShards)
+    return std::nullopt;
+  return static_cast<int>(value);
+}
+
+// --shard K/N (1-based K), else a Slurm job array's task, else the whole set.
+Shard shardOf(const std::string& text) {
+  if (!text.empty()) {
+    const auto slash = text.find('/');
+    const auto k = shardNumber(std::string_view(text).substr(0, slash));
+    const auto n = slash == std::string::npos
+                       ? std::nullopt
+                       : shardNumber(std::string_view(text).substr(slash + 1));
+    if (!k || !n || *k < 1 || *k > *n)
+      throw Error(fmt::format("--shard: '{}' is not K/N with 1 <= K <= N <= {}", text, kMaxShards));
+    return {*k - 1, *n};
+  }
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+  if (!id || !count) return {};
+  const auto task = shardNumber(id);
+  const auto tasks = shardNumber(count);
+  const auto first = min ? shardNumber(min) : std::optional<int>(0);
+  if (!task || !tasks || !first || *tasks < 1 || *task < *first || *task - *first >= *tasks)
+    throw Error(
+        fmt::format("SLURM_ARRAY_TASK_ID={} of SLURM_ARRAY_TASK_COUNT={} (first {}) is not "
+                    "a task of the array",
+                    id, count, min ? min : "0"));
+  return {*task - *first, *tasks};
+}
+
+// Object names and paths go into the manifest (JSON) and the datasets (HDF5 UTF-8 strings).
+void requireUtf8(const std::string& text, const SourceLocation& where, const char* what) {
+  if (const auto bad = firstInvalidUtf8(text))
+    throw Error(where, fmt::format("{} holds byte 0x{:02X}, which is not UTF-8", what,
+                                   static_cast<unsigned char>(text[*bad])));
+}
+
+// The object files: every .xml body file of a folder (objects.txt's order when it has one), or
+// the lines of a list file (# starts a comment; paths relative to the list's folder).
+std::vector<fs::path> objectFiles(const fs::path& source) {
+  fs::path list = source;
+  if (fs::is_directory(source)) {
+    list = source / "objects.txt";
+    if (!fs::exists(list)) {
+      std::vector<fs::path> files;
+      for (const auto& entry : fs::directory_iterator(source)) {
+        if (entry.path().extension() != ".xml") continue;
+        requireUtf8(entry.path().filename().string(), SourceLocation{source.string()},
+                    "--objects: a file name in the folder");
+        files.push_back(entry.path());
+      }
+      std::sort(files.begin(), files.end());
+      if (files.empty())
+        throw Error(SourceLocation{source.string()}, "--objects: the folder holds no .xml file");
+      return files;
+    }
+  }
+  std::vector<fs::path> files;
+  std::istringstream lines(readInputFile(list));
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    requireUtf8(line, SourceLocation{list.string(), number}, "the line");
+    line = line.substr(0, line.find('#'));
+    line.erase(0, line.find_first_not_of(" \t\r"));
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    if (line.empty()) continue;
+    const fs::path file = fs::path(line).is_absolute() ? fs::path(line) : list.parent_path() / line;
+    files.push_back(file.lexically_normal());
+  }
+  if (files.empty()) throw Error(SourceLocation{list.string()}, "--objects: the list is empty");
+  return files;
+}
+
+// Object names are the files' stems, made unique.
+std::vector<std::string> objectNames(const std::vector<fs::path>& files) {
+  std::vector<std::string> names;
+  std::set<std::string> used;
+  for (const fs::path& file : files) {
+    std::string name = file.stem().string();
+    for (int k = 2; !used.insert(name).second; ++k)
+      name = fmt::format("{}_{}", file.stem().string(), k);
+    names.push_back(name);
+  }
+  return names;
+}
+
+// `options`, once the paths the manifest records are found to be UTF-8.
+const BatchOptions& utf8Checked(const BatchOptions& options) {
+  requireUtf8(options.hand.string(), {}, "--hand");
+  requireUtf8(options.objects.string(), {}, "--objects");
+  requireUtf8(options.out.string(), {}, "--out");
+  return options;
+}
+
+// What a dataset depends on: a manifest written with other settings cannot be resumed.
+json settingsJson(const BatchOptions& options) {
+  json settings = {{"hand", fs::absolute(options.hand).lexically_normal().string()},
+                   {"objects", fs::absolute(options.objects).lexically_normal().string()},
+                   {"grasps", options.grasps},
+                   {"seed", options.seed},
+                   {"validate", options.validate}};
+  if (options.secondsPerObject)
+    settings["seconds_per_object"] = *options.secondsPerObject;
+  else
+    settings["steps_per_object"] = options.steps;
+  if (options.validate) settings["validate_seconds"] = options.validateSeconds;
+  return settings;
+}
+
+}  // namespace
+
+void addBatchCommand(CLI::App& app, BatchOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "batch",
+      "Plan grasps on many objects with one hand: one HDF5 dataset file per object and a "
+      "manifest; running the same command again resumes");
+  cmd->add_option("--hand", options.hand, "The hand's robot file (GraspIt! XML or URDF)")
+      ->required()
+      ->check(existingFile());
+  cmd->add_option("--objects", options.objects,
+                  "A folder of body files (objects.txt's order when it has one) or a list file")
+      ->required()
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--out", options.out, "The dataset folder")->required();
+  addLoadFlags(*cmd, options.load);
+  cmd->add_option("--grasps", options.grasps, "Grasps kept per object (the best list's size)")
+      ->default_val(20)
+      ->check(CLI::Range(1, 10000));
+  auto* steps = cmd->add_option("--steps", options.steps, "Planner steps per object")
+                    ->default_val(40000)
+                    ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
+  cmd->add_option("--seconds-per-object", options.secondsPerObject,
+                  "Plan each object for this long instead (not reproducible: depends on speed)")
+      ->excludes(steps)
+      ->check(positiveFinite());
+  cmd->add_flag("--validate", options.validate,
+                "Label each grasp physically (graspkit validate: 6 directions)");
+  cmd->add_option("--validate-seconds", options.validateSeconds,
+                  "--validate: simulated seconds per direction")
+      ->default_val(2.0)
+      ->check(positiveFinite());
+  cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
+      ->check(seedNumber())
+      ->default_val(1);
+  cmd->add_option("--shard", options.shard,
+                  "K/N: take every N-th object from the K-th (default: a Slurm job array's task "
+                  "from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, else all)");
+  cmd->add_option("--object-timeout", options.objectTimeout,
+                  "Seconds an object may take before it is killed and recorded as failed")
+      ->check(positiveFinite())
+      ->default_val(1800.0);
+}
+
+namespace {
+
+// Temporaries a killed run left behind (".NAME.h5.PID.tmp" whose process is gone).
+void removeStaleTemporaries(const fs::path& folder) {
+  std::error_code missing;
+  for (const auto& entry : fs::directory_iterator(folder, missing)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name[0] != '.' || entry.path().extension() != ".tmp") continue;
+    const std::string stem = entry.path().stem().string();  // .NAME.h5.PID
+    const pid_t pid = static_cast<pid_t>(std::atol(stem.substr(stem.rfind('.') + 1).c_str()));
+    if (!processRuns(pid)) {
+      std::error_code ignored;
+      fs::remove(entry.path(), ignored);
+    }
+  }
+}
+
+// What a run of the batch keeps: the objects, this share of them, and on the rank that writes it,
+// the manifest and the counts for the summary.
+class BatchRun {
+ public:
+  BatchRun(const BatchOptions& options, bool quiet)
+      : options_(options),
+        quiet_(quiet),
+        shard_(shardOf(options.shard)),
+        files_(objectFiles(utf8Checked(options).objects)),
+        names_(objectNames(files_)) {}
+
+  const fs::path& file(std::size_t i) const { return files_[i]; }
+  fs::path dataset(std::size_t i) const { return options_.out / "grasps" / (names_[i] + ".h5"); }
+
+  // Reads (or starts) the manifest and returns this share's objects still to run; the others
+  // are counted as settled. Only the rank that writes the manifest calls it.
+  std::vector<std::size_t> prepare() {
+    createOutputFolder(options_.out / "grasps");
+    removeStaleTemporaries(options_.out / "grasps");
+    manifest_file_ = shard_.count == 1 ? options_.out / "manifest.json"
+                                       : options_.out / fmt::format("manifest-{}-of-{}.json",
+                                                                    shard_.index + 1, shard_.count);
+    const json settings = settingsJson(options_);
+    manifest_ = {{"manifest_version", kManifestVersion},
+                 {"engine_version", engineVersion()},
+                 {"settings", settings},
+                 {"shard", {{"index", shard_.index + 1}, {"count", shard_.count}}},
+                 {"objects", json::object()}};
+    if (fs::exists(manifest_file_)) {
+      const json previous = json::parse(readInputFile(manifest_file_), nullptr, false);
+      if (previous.is_discarded() || !previous.contains("objects"))
+        throw Error(SourceLocation{manifest_file_.string()}, "not a batch manifest");
+      if (previous.value("settings", json()) != settings)
+        throw Error(SourceLocation{manifest_file_.string()},
+                    fmt::format("the folder holds a batch run with other settings ({}); use "
+                                "another --out, or the same settings to resume",
+                                previous.value("settings", json()).dump()));
+      checkManifestObjects(previous["objects"]);
+      manifest_["objects"] = previous["objects"];
+    }
+    std::vector<std::size_t> pending;
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+      if (static_cast<int>(i % static_cast<std::size_t>(shard_.count)) != shard_.index) continue;
+      ++share_;
+      const json& entry = entryOf(i);
+      const std::string status = entry.value("status", "");
+      if (status == "done" && datasetLoads(dataset(i))) {
+        ++done_, ++settled_;
+      } else if (status == "failed" && entry.value("attempts", 0) >= kMaxAttempts) {
+        ++failed_, ++settled_;
+        failures_.push_back(fmt::format("{}: {}", names_[i], entry.value("error", "")));
+      } else {
+        pending.push_back(i);
+      }
+    }
+    pending_ = pending.size();
+    writeFileAtomically(manifest_file_, manifest_.dump(2) + "\n");
+    return pending;
+  }
+
+  // Enters one object's outcome in the manifest (written at once) and reports progress.
+  void record(std::size_t i, const ObjectOutcome& outcome) {
+    json& entry = entryOf(i);
+    const int attempts = entry.value("attempts", 0) + 1;
+    entry = {{"file", files_[i].string()},
+             {"status", outcome.done ? "done" : "failed"},
+             {"attempts", attempts},
+             {"seconds", outcome.seconds}};
+    if (outcome.done) {
+      ++done_;
+      entry["dataset"] = (fs::path("grasps") / (names_[i] + ".h5")).string();
+      entry["grasps"] = outcome.grasps;
+      entry["force_closure"] = outcome.forceClosure;
+      if (options_.validate) entry["held"] = outcome.held;
+    } else {
+      ++failed_;
+      entry["error"] = outcome.error;
+      failures_.push_back(fmt::format("{}: {}", names_[i], outcome.error));
+    }
+    writeFileAtomically(manifest_file_, manifest_.dump(2) + "\n");
+    ++ran_;
+    spent_ += outcome.seconds;
+    if (quiet_) return;
+    const double eta = spent_ / ran_ * static_cast<double>(pending_ - ran_) / workers_;
+    std::cerr << fmt::format(
+        "graspkit: [{}/{}] {}: {} ({:.1f} s), {} left\n", ran_, pending_, names_[i],
+        outcome.done
+            ? fmt::format("{} grasps, {} force closure", outcome.grasps, outcome.forceClosure)
+            : "failed: " + outcome.error,
+        outcome.seconds, clockTime(eta));
+  }
+
+  void setWorkers(int workers) { workers_ = std::max(1, workers); }
+
+  // Once every shard has written its manifest, manifest.json gathers them (each shard's run
+  // writes it as it ends; the last to end writes the whole set). A later run without --shard
+  // then resumes from it.
+  void mergeShards(std::ostream& out) const {
+    if (shard_.count == 1) return;
+    json merged = {{"manifest_version", kManifestVersion}, {"engine_version", engineVersion()},
+                   {"settings", settingsJson(options_)},   {"shard", {{"index", 1}, {"count", 1}}},
+                   {"merged_from", json::array()},         {"objects", json::object()}};
+    for (int k = 1; k <= shard_.count; ++k) {
+      const fs::path file = options_.out / fmt::format("manifest-{}-of-{}.json", k, shard_.count);
+      if (!fs::exists(file)) return;  // a shard has not run yet
+      const json part = json::parse(readInputFile(file), nullptr, false);
+      if (part.is_discarded() || part.value("settings", json()) != merged["settings"]) return;
+      merged["merged_from"].push_back(file.filename().string());
+      for (const auto& [name, entry] : part["objects"].items()) merged["objects"][name] = entry;
+    }
+    int done = 0;
+    for (const auto& [name, entry] : merged["objects"].items())
+      done += entry.value("status", "") == "done" ? 1 : 0;
+    writeFileAtomically(options_.out / "manifest.json", merged.dump(2) + "\n");
+    out << fmt::format("merged {} shard manifests into {}: {} of {} objects done\n", shard_.count,
+                       (options_.out / "manifest.json").string(), done, files_.size());
+  }
+
+  // The summary; the exit status (1 when some object failed).
+  int summary(std::ostream& out) const {
+    removeStaleTemporaries(options_.out / "grasps");  // a writer that died during this run
+    out << fmt::format(
+        "{} objects: {} done, {} failed{}; manifest {}\n", share_, done_, failed_,
+        settled_ ? fmt::format(" ({} already settled before this run)", settled_) : "",
+        manifest_file_.string());
+    for (const std::string& failure : failures_) out << "  failed " << failure << "\n";
+    mergeShards(out);
+    return failed_ > 0 ? 1 : 0;
+  }
+
+ private:
+  // A manifest's "objects" as batch writes it: an object of entries, each an object whose
+  // status is a string and attempts a whole number. A tampered manifest is bad input.
+  void checkManifestObjects(const json& objects) const {
+    auto refuse = [&](const std::string& what) {
+      throw Error(SourceLocation{manifest_file_.string(), 0, "objects"},
+                  "not a batch manifest: " + what);
+    };
+    if (!objects.is_object()) refuse("\"objects\" is not an object of entries");
+    for (const auto& [name, entry] : objects.items()) {
+      if (!entry.is_object()) refuse(fmt::format("entry '{}' is not an object", name));
+      if (entry.contains("status") && !entry["status"].is_string())
+        refuse(fmt::format("entry '{}': status is not a string", name));
+      if (entry.contains("attempts") && !entry["attempts"].is_number_integer())
+        refuse(fmt::format("entry '{}': attempts is not a whole number", name));
+      if (entry.contains("error") && !entry["error"].is_string())
+        refuse(fmt::format("entry '{}': error is not a string", name));
+    }
+  }
+
+  // A dataset marked done counts only when it loads: a truncated or replaced file is planned
+  // again rather than kept.
+  static bool datasetLoads(const fs::path& file) {
+    try {
+      loadGraspDataset(file);
+      return true;
+    } catch (const Error&) {
+      return false;
+    }
+  }
+
+  json& entryOf(std::size_t i) {
+    json& entry = manifest_["objects"][names_[i]];
+    if (!entry.is_object()) entry = json::object();
+    return entry;
+  }
+
+  const BatchOptions& options_;
+  bool quiet_;
+  Shard shard_;
+  std::vector<fs::path> files_;
+  std::vector<std::string> names_;
+  fs::path manifest_file_;
+  json manifest_;
+  std::size_t share_ = 0, pending_ = 0, ran_ = 0;
+  int done_ = 0, failed_ = 0, settled_ = 0, workers_ = 1;
+  double spent_ = 0.0;
+  std::vector<std::string> failures_;
+};
+
+int runSerially(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  for (std::size_t i : run.prepare())
+    run.record(i, runObject(options, run.file(i), run.dataset(i)));
+  return run.summary(out);
+}
+
+// Every rank plans; rank 0 also keeps the manifest. An error on rank 0 before the objects are
+// shared out (a manifest with other settings) stops every rank.
+int runOverMpi(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  const MpiBatch mpi;
+  std::vector<std::size_t> pending;
+  std::string error;
+  if (mpi.rank() == 0) {
+    try {
+      pending = run.prepare();
+      run.setWorkers(mpi.size());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (!mpi.agree(error.empty())) {
+    if (mpi.rank() == 0) throw Error(error);
+    return 1;
+  }
+  mpi.run(
+      pending,
+      [&](std::size_t i, const std::function<void()>& serve) {
+        return runObject(options, run.file(i), run.dataset(i), serve);
+      },
+      [&](std::size_t i, const ObjectOutcome& outcome) { run.record(i, outcome); });
+  return mpi.rank() == 0 ? run.summary(out) : 0;
+}
+
+}  // namespace
+
+int runBatch(const BatchOptions& options, bool quiet, std::ostream& out) {
+  BatchRun run(options, quiet);
+  return launchedByMpi() ? runOverMpi(run, options, out) : runSerially(run, options, out);
+}
+
+}  // namespace graspkit::cli

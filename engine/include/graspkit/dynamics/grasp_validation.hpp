@@ -1,0 +1,64 @@
+#pragma once
+// Physical validation of a grasp, as grasp datasets label grasps: the hand squeezes with its DOF
+// controllers and the object's weight is turned along each of the 6 axis directions in turn; the
+// grasp holds a direction when the object stays with the hand.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/math/transform.hpp"
+
+namespace graspkit {
+
+class World;
+
+struct ValidationRequest {
+  double seconds = 2.0;  // per direction
+  double dt = kDefaultTimeStep;
+  // The squeeze settles this long, without gravity, before any direction is tried.
+  double settleSeconds = 0.25;
+  double maxSlip = 5.0;                              // mm, the object's travel relative to the palm
+  double maxTurn = 15.0 * 3.14159265358979 / 180.0;  // rad
+  double gravity = kStandardGravity;                 // mm/s^2, the size of the pull
+  // A direction ends early once the hand and the object have come to rest under the pull:
+  // every speed below restSpeed (mm/s; rad/s times the object's radius) and every contact
+  // impulse steady for restSeconds. What is left of the run cannot move the object by more
+  // than restSpeed times the time left, which is counted in its slip. False runs every second.
+  bool stopAtRest = true;
+  double restSpeed = 1e-3;
+  double restSeconds = 0.1;
+};
+
+struct DirectionResult {
+  Vector3 direction = Vector3::Zero();  // unit, world frame
+  bool held = false;
+  double slip = 0.0;     // mm: the largest displacement from the palm seen in the direction's run
+  double turn = 0.0;     // rad: the largest rotation relative to the palm
+  double seconds = 0.0;  // simulated: less than asked when it ended at rest or let go
+  std::string failure;   // a DynamicsError's message, when the simulation itself failed
+};
+
+struct ValidationResult {
+  std::array<DirectionResult, 6> directions;  // +x, -x, +y, -y, +z, -z
+  bool held = false;                          // every direction held
+  int directionsHeld = 0;
+};
+
+// Validates the grasp of body `object` by robot `robot` as `world` stands (the hand closed on
+// it). The world is not changed: each direction runs on a clone that keeps only the robots and
+// the object (obstacles and other bodies are left out, so that nothing but the hand can hold
+// it). The hand's DOFs target their closing limits from the closed posture, so each controller
+// squeezes with up to its maxEffort. Throws graspkit::Error for bad indices or a request
+// outside its ranges.
+ValidationResult validateGrasp(const World& world, int robot, int object,
+                               const ValidationRequest& request = {});
+
+// validateGrasp() on each world (the same robot and object indices in each: a plan's grasp
+// worlds), up to `threads` at a time. Each grasp's result is what validateGrasp() alone gives.
+std::vector<ValidationResult> validateGrasps(const std::vector<World>& worlds, int robot,
+                                             int object, const ValidationRequest& request = {},
+                                             int threads = 1);
+
+}  // namespace graspkit

@@ -1,0 +1,48 @@
+#include "geometry/convex_hull.hpp"
+
+#include <unordered_map>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include "math/qhull_run.hpp"
+
+namespace graspkit::geometry {
+std::optional<ConvexHull> convexHull(const std::vector<Vector3>& points) {
+  if (points.size() < 4) return std::nullopt;
+  std::vector<double> coords;
+  coords.reserve(3 * points.size());
+  for (const Vector3& p : points) coords.insert(coords.end(), {p.x(), p.y(), p.z()});
+
+  // Qt: triangulated facets (FCL's faces); the vertices are input points, never moved.
+  std::optional<ConvexHull> hull;
+  const auto failure = detail::runQhull(coords, 3, "Qt", [&](qhT* qh) {
+    hull.emplace();
+    auto vertices = std::make_shared<std::vector<Vector3>>();
+    auto faces = std::make_shared<std::vector<int>>();
+    std::unordered_map<int, int> index;  // input point id -> hull vertex index
+    vertexT* vertex;
+    FORALLvertices {
+      const int id = qh_pointid(qh, vertex->point);
+      index.emplace(id, static_cast<int>(vertices->size()));
+      vertices->push_back(points[static_cast<std::size_t>(id)]);
+    }
+    int face_count = 0;
+    facetT* facet;
+    FORALLfacets {
+      faces->push_back(qh_setsize(qh, facet->vertices));
+      vertexT** vertexp;
+      FOREACHvertex_(facet->vertices) faces->push_back(index.at(qh_pointid(qh, vertex->point)));
+      ++face_count;
+    }
+    hull->vertices.resize(3, static_cast<Eigen::Index>(vertices->size()));
+    for (std::size_t i = 0; i < vertices->size(); ++i)
+      hull->vertices.col(static_cast<Eigen::Index>(i)) = (*vertices)[i];
+    hull->shape = std::make_shared<const fcl::Convexd>(vertices, face_count, faces);
+  });
+  if (failure) return std::nullopt;
+  return hull;
+}
+
+}  // namespace graspkit::geometry

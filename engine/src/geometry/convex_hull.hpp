@@ -1,0 +1,24 @@
+#pragma once
+// The convex hull of a mesh's vertices (internal to the collision module), for certificates that
+// two meshes cannot touch: if their hulls are apart, so are they.
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <fcl/geometry/shape/convex.h>
+
+#include "graspkit/geometry/mesh.hpp"
+
+namespace graspkit::geometry {
+
+struct ConvexHull {
+  Eigen::Matrix3Xd vertices;  // body frame, one per column: some of the mesh's vertices, exactly
+  std::shared_ptr<const fcl::Convexd> shape;  // the same polytope for FCL's GJK
+};
+
+// qhull's hull of the points; nullopt when it has no volume (a flat or degenerate mesh) or
+// qhull fails.
+std::optional<ConvexHull> convexHull(const std::vector<Vector3>& points);
+
+}  // namespace graspkit::geometry

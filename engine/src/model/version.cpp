@@ -1,7 +1,0 @@
-#include "graspkit/version.hpp"
-
-namespace graspkit {
-
-const char* engineVersion() { return GRASPKIT_VERSION; }
-
-}  // namespace graspkit
