@@ -2,7 +2,9 @@
 // dataset file per object (io/grasp_dataset_file.hpp), with a manifest that makes a re-run
 // resume. Each object runs in a child process (batch_object.cpp), so that a crash, a hang or an
 // error on one object is recorded against it and the batch goes on; under mpirun the objects are
-// shared over the ranks (batch_mpi.cpp).
+// shared over the ranks (batch/batch_mpi.cpp); batch/shard.cpp chooses this process's share
+// (Slurm), batch/object_list.cpp reads the objects. What stays here: the flags, the manifest and
+// the run.
 
 #include <fmt/format.h>
 #include <signal.h>
@@ -20,6 +22,8 @@
 
 #include "batch/batch_mpi.hpp"
 #include "batch/batch_object.hpp"
+#include "batch/object_list.hpp"
+#include "batch/shard.hpp"
 #include "commands/batch_command.hpp"
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/input_file.hpp"
@@ -39,107 +43,6 @@ using nlohmann::json;
 
 constexpr int kManifestVersion = 1;
 constexpr int kMaxAttempts = 2;  // a failed object is retried once
-
-struct Shard {
-  int index = 0;  // 0-based
-  int count = 1;
-};
-
-// A whole number from 1 to kMaxShards written as one, or nullopt.
-constexpr long long kMaxShards = 1'000'000;
-std::optional<int> shardNumber(std::string_view text) {
-  long long value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value < 0 ||
-      value > kMaxShards)
-    return std::nullopt;
-  return static_cast<int>(value);
-}
-
-// --shard K/N (1-based K), else a Slurm job array's task, else the whole set.
-Shard shardOf(const std::string& text) {
-  if (!text.empty()) {
-    const auto slash = text.find('/');
-    const auto k = shardNumber(std::string_view(text).substr(0, slash));
-    const auto n = slash == std::string::npos
-                       ? std::nullopt
-                       : shardNumber(std::string_view(text).substr(slash + 1));
-    if (!k || !n || *k < 1 || *k > *n)
-      throw Error(fmt::format("--shard: '{}' is not K/N with 1 <= K <= N <= {}", text, kMaxShards));
-    return {*k - 1, *n};
-  }
-  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
-  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
-  const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-  if (!id || !count) return {};
-  const auto task = shardNumber(id);
-  const auto tasks = shardNumber(count);
-  const auto first = min ? shardNumber(min) : std::optional<int>(0);
-  if (!task || !tasks || !first || *tasks < 1 || *task < *first || *task - *first >= *tasks)
-    throw Error(
-        fmt::format("SLURM_ARRAY_TASK_ID={} of SLURM_ARRAY_TASK_COUNT={} (first {}) is not "
-                    "a task of the array",
-                    id, count, min ? min : "0"));
-  return {*task - *first, *tasks};
-}
-
-// Object names and paths go into the manifest (JSON) and the datasets (HDF5 UTF-8 strings).
-void requireUtf8(const std::string& text, const SourceLocation& where, const char* what) {
-  if (const auto bad = firstInvalidUtf8(text))
-    throw Error(where, fmt::format("{} holds byte 0x{:02X}, which is not UTF-8", what,
-                                   static_cast<unsigned char>(text[*bad])));
-}
-
-// The object files: every .xml body file of a folder (objects.txt's order when it has one), or
-// the lines of a list file (# starts a comment; paths relative to the list's folder).
-std::vector<fs::path> objectFiles(const fs::path& source) {
-  fs::path list = source;
-  if (fs::is_directory(source)) {
-    list = source / "objects.txt";
-    if (!fs::exists(list)) {
-      std::vector<fs::path> files;
-      for (const auto& entry : fs::directory_iterator(source)) {
-        if (entry.path().extension() != ".xml") continue;
-        requireUtf8(entry.path().filename().string(), SourceLocation{source.string()},
-                    "--objects: a file name in the folder");
-        files.push_back(entry.path());
-      }
-      std::sort(files.begin(), files.end());
-      if (files.empty())
-        throw Error(SourceLocation{source.string()}, "--objects: the folder holds no .xml file");
-      return files;
-    }
-  }
-  std::vector<fs::path> files;
-  std::istringstream lines(readInputFile(list));
-  std::string line;
-  int number = 0;
-  while (std::getline(lines, line)) {
-    ++number;
-    requireUtf8(line, SourceLocation{list.string(), number}, "the line");
-    line = line.substr(0, line.find('#'));
-    line.erase(0, line.find_first_not_of(" \t\r"));
-    line.erase(line.find_last_not_of(" \t\r") + 1);
-    if (line.empty()) continue;
-    const fs::path file = fs::path(line).is_absolute() ? fs::path(line) : list.parent_path() / line;
-    files.push_back(file.lexically_normal());
-  }
-  if (files.empty()) throw Error(SourceLocation{list.string()}, "--objects: the list is empty");
-  return files;
-}
-
-// Object names are the files' stems, made unique.
-std::vector<std::string> objectNames(const std::vector<fs::path>& files) {
-  std::vector<std::string> names;
-  std::set<std::string> used;
-  for (const fs::path& file : files) {
-    std::string name = file.stem().string();
-    for (int k = 2; !used.insert(name).second; ++k)
-      name = fmt::format("{}_{}", file.stem().string(), k);
-    names.push_back(name);
-  }
-  return names;
-}
 
 // `options`, once the paths the manifest records are found to be UTF-8.
 const BatchOptions& utf8Checked(const BatchOptions& options) {
