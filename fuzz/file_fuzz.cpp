@@ -22,10 +22,13 @@
 #include "graspkit/io/dataset/grasp_dataset_file.hpp"
 #include "graspkit/io/graspit/body_file.hpp"
 #include "graspkit/io/graspit/eigengrasp_file.hpp"
+#include "graspkit/io/graspit/robot_export.hpp"
 #include "graspkit/io/graspit/robot_file.hpp"
 #include "graspkit/io/graspit/virtual_contact_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
+#include "graspkit/io/mjcf/mjcf_export.hpp"
 #include "graspkit/io/mjcf/mjcf_file.hpp"
+#include "graspkit/io/urdf/urdf_export.hpp"
 #include "graspkit/io/urdf/urdf_file.hpp"
 #include "graspkit/model/world.hpp"
 
