@@ -7,6 +7,7 @@
 #include "commands/render_command.hpp"
 #include "graspkit/base/error.hpp"
 #include "graspkit/render/render.hpp"
+#include "graspkit/render/text.hpp"
 #include "support/argument_checks.hpp"
 #include "support/scene_frames.hpp"
 

@@ -1,5 +1,7 @@
 // GraspIt!'s search energies (see graspkit/planning/search_energy.hpp for the formulas).
 
+#include "graspkit/planning/search_energy.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cstdint>
 
-#include "graspkit/render/image.hpp"
+#include "graspkit/render/text.hpp"
 
 namespace graspkit {
 

@@ -18,6 +18,7 @@
 #include "graspkit/model/world.hpp"
 #include "graspkit/render/image.hpp"
 #include "graspkit/render/render.hpp"
+#include "graspkit/render/text.hpp"
 #include "test_meshes.hpp"
 #include "test_paths.hpp"
 

@@ -29,15 +29,6 @@ void writePng(const Image& image, const std::filesystem::path& file);
 // Throws graspkit::Error naming the file for a missing or damaged file.
 Image readPng(const std::filesystem::path& file);
 
-// Writes `text` with its top-left corner at (x, y) in a 5 x 7 pixel font, each font pixel
-// `scale` x `scale` image pixels, glyphs 6 font pixels apart. The font has digits, letters
-// (upper case drawn for lower), space and . , - + = # : ( ) / %; other characters draw as a
-// box. Parts outside the image are clipped.
-void drawText(Image& image, int x, int y, std::string_view text,
-              std::array<std::uint8_t, 3> colour = {0, 0, 0}, int scale = 1);
-// The width and height drawText takes for `text`.
-std::array<int, 2> textSize(std::string_view text, int scale = 1);
-
 // Tiles `images` row by row, `columns` to a row, into one picture with `gap` pixels of `fill`
 // between them; every tile takes the size of the largest. Empty for no images.
 Image tileImages(std::span<const Image> images, int columns, int gap = 4,
