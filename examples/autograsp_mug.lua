@@ -24,7 +24,7 @@ if arg[2] then
   object = world:body(arg[2])
 else
   for _, body in ipairs(world:bodies()) do
-    if object == nil and body:kind() == "object" then object = body end
+    if object == nil and body:kind() == "graspable" then object = body end
   end
 end
 if object == nil then error(world_file .. " has no graspable body") end

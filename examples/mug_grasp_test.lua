@@ -25,7 +25,7 @@ end
 test("the mug stands on the floor", function()
   local world = load()
   local mug = world:body("mug")
-  expect_equal(mug:kind(), "object")
+  expect_equal(mug:kind(), "graspable")
   expect_equal(world:body("floor"):kind(), "obstacle")
   -- Its lowest point is half its height below its origin: exactly at the floor's top.
   expect_near(mug:pose().translation[3] - MUG_HEIGHT / 2, 0, 1e-9)

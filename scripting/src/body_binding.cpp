@@ -17,7 +17,7 @@ namespace {
 const char* kindName(const World& world, const BodyRef& ref) {
   switch (ref.kind) {
     case BodyRef::Kind::Body:
-      return world.bodies()[ref.index].isDynamic() ? "object" : "obstacle";
+      return nameOf(world.bodies()[ref.index].kind).data();  // "graspable" or "obstacle"
     case BodyRef::Kind::Link:
       return "link";
     case BodyRef::Kind::Mount:
@@ -222,14 +222,11 @@ void pushBody(lua_State* L, const WorldHandle& world, const BodyRef& ref) {
 }
 
 bool followRemovals(BoundBody& body) {
-  const std::vector<int>& removed = body.world->removedBodies;
-  for (; body.removalsSeen < removed.size(); ++body.removalsSeen) {
-    if (body.ref.kind != BodyRef::Kind::Body) continue;
-    const int gone = removed[body.removalsSeen];
-    if (body.ref.index == gone) return false;
-    if (body.ref.index > gone) --body.ref.index;
+  if (body.ref.kind != BodyRef::Kind::Body) {
+    body.removalsSeen = body.world->removedBodies.size();
+    return true;
   }
-  return true;
+  return body.world->followRemovals(body.ref.index, body.removalsSeen);
 }
 
 BoundBody& toBody(lua_State* L, int arg) {

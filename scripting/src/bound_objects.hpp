@@ -9,6 +9,7 @@
 #include <lua.hpp>
 
 #include "graspkit/grasp/grasp.hpp"
+#include "graspkit/host/world_session.hpp"
 #include "graspkit/model/body_ref.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/raycast/ray_scene.hpp"
@@ -20,15 +21,12 @@ inline constexpr const char* kBodyClass = "graspkit.Body";
 inline constexpr const char* kRobotClass = "graspkit.Robot";
 inline constexpr const char* kGraspClass = "graspkit.Grasp";
 
-struct ScriptWorld {
-  World world;
-  std::filesystem::path file;  // where it was loaded from or last saved; empty for new_world()
+// The host layer's world handle (world, file, model cache, removals), and the ray scene a
+// script's raycasts reuse.
+struct ScriptWorld : host::WorldSession {
   // Built on the first raycast and brought up to date before each one.
   std::unique_ptr<RayScene> rays;
   std::size_t raySceneBodyCount = 0;
-  // Free-body indices removed by world:remove_body, in order. A Body (or Grasp) object records
-  // how many it has seen and renumbers itself when it is next used.
-  std::vector<int> removedBodies;
 };
 using WorldHandle = std::shared_ptr<ScriptWorld>;
 

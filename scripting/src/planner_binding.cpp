@@ -16,6 +16,8 @@
 
 #include "bound_objects.hpp"
 #include "graspkit/base/error.hpp"
+#include "graspkit/host/plan_task.hpp"
+#include "graspkit/host/subject.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/planning/planning_scene.hpp"
 #include "graspkit/plugin/registry.hpp"
@@ -179,10 +181,12 @@ std::string reasonOf(const std::exception& e) {
 
 int robotOption(lua_State* L, int options, const World& world) {
   const int type = pushOption(L, options, "robot");
-  if (type == LUA_TNIL) {  // the world's first hand, as GraspIt! picks its current hand
-    if (const auto hand = world.firstHand()) return *hand;
-    throw ArgumentError(L, options,
-                        "no robot of the world is a hand; name one with option 'robot'");
+  if (type == LUA_TNIL) {  // the host layer's choice: the world's first hand
+    try {
+      return host::defaultHand(world);
+    } catch (const Error& e) {
+      throw ArgumentError(L, options, std::string(e.what()) + " (option 'robot')");
+    }
   }
   if (const auto* robot = testObject<BoundRobot>(L, lua_gettop(L), kRobotClass)) {
     if (&robot->world->world != &world)
@@ -212,10 +216,11 @@ BodyRef objectOption(lua_State* L, int options, const ScriptWorld& world) {
       throw ArgumentError(L, options, "option 'object': " + reasonOf(e));
     }
   }
-  const auto& bodies = world.world.bodies();
-  for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
-    if (bodies[i].isDynamic()) return BodyRef::body(i);
-  throw ArgumentError(L, options, "the world has no graspable body (give option 'object')");
+  try {
+    return host::defaultObject(world.world);
+  } catch (const Error& e) {
+    throw ArgumentError(L, options, std::string(e.what()) + " (option 'object')");
+  }
 }
 
 // `set = {key = value}`: planner-specific settings, values strings or numbers.
@@ -274,19 +279,12 @@ std::string describeFunction(lua_State* L, int index) {
   return fmt::format("energy function ({}:{})", ar.short_src, ar.linedefined);
 }
 
-// The energy option: a registered name (checked now) or a Lua function, which gets a world of
-// its own (a clone) to look at the hand in.
-void energyOption(lua_State* L, int options, const WorldHandle& source, BoundPlanner& bound) {
+// The energy option when it is a Lua function, which gets a world of its own (a clone) to look
+// at the hand in. (A name is a setting like any other: readRequest passes it on.)
+void energyFunctionOption(lua_State* L, int options, const WorldHandle& source,
+                          BoundPlanner& bound) {
   PlanningRequest& request = bound.request;
-  const int type = pushOption(L, options, "energy");
-  if (type == LUA_TNIL) return;
-  if (type == LUA_TSTRING) {
-    request.energy = lua_tostring(L, -1);
-    Registry::global().makeSearchEnergy(request.energy);  // an unknown name fails here
-    return;
-  }
-  if (type != LUA_TFUNCTION)
-    throw ArgumentError(L, options, "option 'energy' must be an energy name or a function");
+  if (pushOption(L, options, "energy") != LUA_TFUNCTION) return;
   auto link = std::make_shared<LuaEnergyLink>();
   link->name = describeFunction(L, -1);
   link->robot = request.robot;
@@ -307,37 +305,52 @@ void energyOption(lua_State* L, int options, const WorldHandle& source, BoundPla
   request.customEnergy = [link] { return std::make_unique<LuaSearchEnergy>(link); };
 }
 
+// The options table read into the host layer's settings, so that what a script leaves out is
+// what `graspkit plan` and every other front end leave out too.
 void readRequest(lua_State* L, int options, BoundPlanner& bound) {
-  PlanningRequest& request = bound.request;
   const OptionsTable table(L, options,
                            {"world", "robot", "object", "energy", "space", "posture", "seed",
                             "threads", "top", "preset", "mode", "set", "states"});
   if (pushOption(L, options, "world") == LUA_TNIL)
     throw ArgumentError(L, options, "option 'world' (a World) is required");
   const WorldHandle source = toObject<WorldHandle>(L, lua_gettop(L), kWorldClass, "World");
-  request.world = std::make_shared<const World>(source->world.clone());
-  request.robot = robotOption(L, options, source->world);
-  request.object = objectOption(L, options, *source);
-  request.position =
-      parseNamed<PositionSpace>(table.string("space", "axis-angle"), "position space");
-  request.posture = parseNamed<PostureSpace>(table.string("posture", "eigen"), "posture space");
-  const double seed = table.number("seed", 1);
+  host::PlanSettings settings;
+  settings.planner = bound.name;
+  const int robot = robotOption(L, options, source->world);
+  const BodyRef object = objectOption(L, options, *source);
+  settings.space = parseNamed<PositionSpace>(
+      table.string("space", std::string(nameOf(settings.space))), "position space");
+  settings.posture = parseNamed<PostureSpace>(
+      table.string("posture", std::string(nameOf(settings.posture))), "posture space");
+  const double seed = table.number("seed", static_cast<double>(settings.seed));
   if (seed < 0 || seed != std::floor(seed) || seed > 9007199254740992.0)
     throw ArgumentError(L, options, "option 'seed' must be a whole number >= 0");
-  request.seed = static_cast<std::uint64_t>(seed);
-  request.threads = table.integer("threads", 1);
-  if (request.threads < 1) throw ArgumentError(L, options, "option 'threads' must be >= 1");
-  request.bestListSize = table.integer("top", 20);
-  if (request.bestListSize < 1) throw ArgumentError(L, options, "option 'top' must be >= 1");
-  if (table.has("preset")) request.options["preset"] = table.string("preset", "");
-  if (table.has("mode")) request.options["mode"] = table.string("mode", "");
-  settingsOption(L, options, request.options);
-  statesOption(L, options, request);
-  energyOption(L, options, source, bound);
-  if (bound.luaEnergy && request.threads != 1)
-    throw ArgumentError(
-        L, options,
-        fmt::format("a Lua energy runs on one thread; option 'threads' is {}", request.threads));
+  settings.seed = static_cast<std::uint64_t>(seed);
+  const int energyType = pushOption(L, options, "energy");
+  if (energyType == LUA_TSTRING)
+    settings.energy = lua_tostring(L, -1);
+  else if (energyType != LUA_TNIL && energyType != LUA_TFUNCTION)
+    throw ArgumentError(L, options, "option 'energy' must be an energy name or a function");
+  // A Lua energy runs on the script's thread: one search thread unless the script asks for more
+  // (which is refused below).
+  settings.threads = energyType == LUA_TFUNCTION ? 1 : 0;
+  if (table.has("threads")) {
+    settings.threads = table.integer("threads", 1);
+    if (settings.threads < 1) throw ArgumentError(L, options, "option 'threads' must be >= 1");
+  }
+  settings.top = table.integer("top", settings.top);
+  if (settings.top < 1) throw ArgumentError(L, options, "option 'top' must be >= 1");
+  if (table.has("preset")) settings.preset = table.string("preset", "");
+  if (table.has("mode")) settings.mode = table.string("mode", "");
+  settingsOption(L, options, settings.options);
+  bound.request = host::planningRequest(std::make_shared<const World>(source->world.clone()), robot,
+                                        object, settings);
+  statesOption(L, options, bound.request);
+  energyFunctionOption(L, options, source, bound);
+  if (bound.luaEnergy && bound.request.threads != 1)
+    throw ArgumentError(L, options,
+                        fmt::format("a Lua energy runs on one thread; option 'threads' is {}",
+                                    bound.request.threads));
 }
 
 int newPlanner(lua_State* L) {

@@ -8,6 +8,8 @@
 #include "graspkit/dynamics/dynamics.hpp"
 #include "graspkit/grasp/autograsp.hpp"
 #include "graspkit/grasp/robot_type.hpp"
+#include "graspkit/host/plan_task.hpp"
+#include "graspkit/host/subject.hpp"
 #include "graspkit/model/inverse_kinematics.hpp"
 #include "graspkit/model/virtual_contact.hpp"
 #include "graspkit/planning/eigengrasp_map.hpp"
@@ -431,7 +433,7 @@ int energy(lua_State* L) {
   const BoundRobot& robot = toRobot(L, 1);
   PlanningRequest request;
   request.object = toBodyOf(L, 2, *robot.world);
-  request.energy = isNone(L, 3) ? std::string("contact") : toString(L, 3);
+  request.energy = isNone(L, 3) ? host::PlanSettings{}.energy : toString(L, 3);
   request.world = std::make_shared<const World>(robot.world->world.clone());
   request.robot = robot.index;
   request.position = PositionSpace::Complete;
@@ -466,10 +468,15 @@ WrenchSpaceType wrenchSpaceType(lua_State* L, int arg, const std::string& name) 
 // hand:grasp(object [, {gws = "L1" | "Linf"}]) -> Grasp of the hand's current contacts.
 int grasp(lua_State* L) {
   const BoundRobot& robot = toRobot(L, 1);
-  const BodyRef object = toBodyOf(L, 2, *robot.world);
-  const OptionsTable options(L, 3, {"gws"});
+  // hand:grasp([object] [, options]): the world's first graspable body when none is given.
+  const bool named = !isNone(L, 2) && lua_type(L, 2) != LUA_TTABLE;
+  const BodyRef object =
+      named ? toBodyOf(L, 2, *robot.world) : host::defaultObject(robot.world->world);
+  const int optionsArg = named ? 3 : 2;
+  const OptionsTable options(L, optionsArg, {"gws"});
   GraspRequest request;
-  request.wrenchSpace.type = wrenchSpaceType(L, 3, options.string("gws", "L1"));
+  request.wrenchSpace.type = wrenchSpaceType(
+      L, optionsArg, options.string("gws", std::string(nameOf(request.wrenchSpace.type))));
   Grasp result = analyzeGrasp(robot.world->world, robot.index, object, request);
   pushGrasp(L, robot.world, std::move(result));
   return 1;

@@ -20,7 +20,7 @@ struct ScriptContext {
   std::filesystem::path scriptFolder;             // absolute
   std::vector<std::filesystem::path> modelRoots;  // --root, GRASPKIT_ROOT, GRASPIT
   PathPolicy paths;
-  ModelCache cache;
+  std::shared_ptr<ModelCache> cache = std::make_shared<ModelCache>();
   std::optional<std::chrono::steady_clock::time_point> deadline;
   bool timeLimitReached = false;  // set by the time-limit hook, even if the script caught its error
   std::optional<int> exitStatus;  // set by os.exit

@@ -11,6 +11,7 @@
 #include "graspkit/collision/contact_search.hpp"
 #include "graspkit/dynamics/dynamics.hpp"
 #include "graspkit/grasp/grasp.hpp"
+#include "graspkit/host/simulation_task.hpp"
 #include "graspkit/io/graspit/body_file.hpp"
 #include "graspkit/io/graspit/robot_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
@@ -31,14 +32,16 @@ int loadWorld(lua_State* L) {
   ScriptContext& context = scriptContext(L);
   const std::filesystem::path file = context.inputPath(toFileName(L, 1));
   auto handle = std::make_shared<ScriptWorld>();
-  handle->world = loadAnyFile(file, context.options.load, &context.cache);
-  handle->file = file;
+  static_cast<host::WorldSession&>(*handle) =
+      host::WorldSession::load(file, context.options.load, context.cache);
   pushWorld(L, std::move(handle));
   return 1;
 }
 
 int newWorld(lua_State* L) {
-  pushWorld(L, std::make_shared<ScriptWorld>());
+  auto handle = std::make_shared<ScriptWorld>();
+  handle->cache = scriptContext(L).cache;  // a script's worlds read each file once
+  pushWorld(L, std::move(handle));
   return 1;
 }
 
@@ -47,11 +50,7 @@ int addBody(lua_State* L, BodyKind kind) {
   ScriptContext& context = scriptContext(L);
   const std::filesystem::path file = context.inputPath(toFileName(L, 2));
   const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
-  Body body;
-  body.model = loadBodyFile(file, &context.cache);
-  body.kind = kind;
-  body.setPose(pose);
-  const int index = world.world.addBody(std::move(body));
+  const int index = world.addBody(file, kind, pose);
   pushBody(L, toWorldHandle(L, 1), BodyRef::body(index));
   return 1;
 }
@@ -69,9 +68,7 @@ int addRobot(lua_State* L) {
   ScriptContext& context = scriptContext(L);
   const std::filesystem::path file = context.inputPath(toFileName(L, 2));
   const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
-  const int index =
-      world.world.addRobot(Robot(loadRobotFile(file, context.options.load, &context.cache)));
-  world.world.setRobotPose(index, pose);
+  const int index = world.addRobot(file, context.options.load, pose);
   pushRobot(L, toWorldHandle(L, 1), index);
   return 1;
 }
@@ -79,8 +76,7 @@ int addRobot(lua_State* L) {
 int save(lua_State* L) {
   ScriptWorld& world = *toWorldHandle(L, 1);
   const std::filesystem::path file = scriptContext(L).outputPath(toFileName(L, 2));
-  saveWorldFile(world.world, file, SaveOptions{.root = file.parent_path()});
-  world.file = file;
+  world.save(file);
   return 0;
 }
 
@@ -131,19 +127,66 @@ int stepWorld(lua_State* L) {
   return 1;
 }
 
-// world:simulate{seconds = 1, dt = 0.0025} -> the last step's report, with its step count
+// world:simulate{seconds = 1, dt = 0.0025, gravity = {x, y, z}, autograsp = false} -> the last
+// step's report, with its step count; the host layer's settings and defaults, as `graspkit
+// simulate` has them. A simulation that blows up raises its reason.
 int simulateWorld(lua_State* L) {
   ScriptWorld& world = toWorld(L, 1);
-  const OptionsTable options(L, 2, {"seconds", "dt"});
-  SimulateRequest request;
-  request.seconds = options.number("seconds", request.seconds);
-  request.dt = options.number("dt", request.dt);
-  const SimulateResult result = simulate(world.world, request);
-  pushStepReport(L, result.last);
-  lua_pushinteger(L, result.steps);
+  const OptionsTable options(L, 2, {"seconds", "dt", "gravity", "autograsp"});
+  host::SimulationSettings settings;
+  settings.seconds = options.number("seconds", settings.seconds);
+  settings.dt = options.number("dt", settings.dt);
+  settings.autograsp = options.boolean("autograsp", settings.autograsp);
+  if (options.has("gravity")) {
+    lua_getfield(L, 2, "gravity");
+    settings.gravity = toVector3(L, lua_gettop(L));
+    lua_pop(L, 1);
+  }
+  const host::SimulationOutcome outcome = host::simulateWorld(world.world, settings);
+  if (!outcome.completed) throw Error(outcome.stopReason);
+  pushStepReport(L, outcome.result.last);
+  lua_pushinteger(L, outcome.result.steps);
   lua_setfield(L, -2, "steps");
-  lua_pushnumber(L, result.time);
+  lua_pushnumber(L, outcome.result.time);
   lua_setfield(L, -2, "time");
+  return 1;
+}
+
+// world:validate{seconds = 2}: the grasp the world holds (its first hand closed on its first
+// graspable body) labelled as `graspkit validate` labels it -> {held, directions_held,
+// directions = {{direction, held, slip_mm, turn_deg, seconds [, failure]}, ...}}
+int validateWorld(lua_State* L) {
+  const ScriptWorld& world = toWorld(L, 1);
+  const OptionsTable options(L, 2, {"seconds"});
+  ValidationRequest request;
+  request.seconds = options.number("seconds", request.seconds);
+  const ValidationResult result = host::validateWorld(world.world, request);
+  lua_createtable(L, 0, 3);
+  lua_pushboolean(L, result.held);
+  lua_setfield(L, -2, "held");
+  lua_pushinteger(L, result.directionsHeld);
+  lua_setfield(L, -2, "directions_held");
+  lua_createtable(L, 6, 0);
+  for (int k = 0; k < 6; ++k) {
+    const DirectionResult& d = result.directions[k];
+    lua_createtable(L, 0, 6);
+    lua_pushstring(L, host::kValidationDirections[k].data());
+    lua_setfield(L, -2, "direction");
+    lua_pushboolean(L, d.held);
+    lua_setfield(L, -2, "held");
+    lua_pushnumber(L, d.slip);
+    lua_setfield(L, -2, "slip_mm");
+    lua_pushnumber(L, d.turn * 180.0 / M_PI);
+    lua_setfield(L, -2, "turn_deg");
+    lua_pushnumber(L, d.seconds);
+    lua_setfield(L, -2, "seconds");
+    if (!d.failure.empty()) {
+      lua_pushstring(L, d.failure.c_str());
+      lua_setfield(L, -2, "failure");
+    }
+    lua_rawseti(L, -2, k + 1);
+  }
+  lua_setfield(L, -2, "directions");
   return 1;
 }
 
@@ -166,8 +209,7 @@ int worldTime(lua_State* L) {
 int clone(lua_State* L) {
   const ScriptWorld& world = *toWorldHandle(L, 1);
   auto copy = std::make_shared<ScriptWorld>();
-  copy->world = world.world.clone();
-  copy->file = world.file;
+  static_cast<host::WorldSession&>(*copy) = world.clone();
   pushWorld(L, std::move(copy));
   return 1;
 }
@@ -349,8 +391,7 @@ int removeBody(lua_State* L) {
                         fmt::format("{} belongs to a robot: only obstacles and graspable bodies "
                                     "can be removed",
                                     bodyName(handle->world, ref)));
-  handle->world.removeBody(ref.index);
-  handle->removedBodies.push_back(ref.index);
+  handle->removeBody(ref.index);
   handle->rays.reset();  // indices moved: rebuilt on the next raycast
   return 0;
 }
@@ -435,6 +476,7 @@ void openWorldFunctions(lua_State* L) {
       {"render", guarded<render>},
       {"step", guarded<stepWorld>},
       {"simulate", guarded<simulateWorld>},
+      {"validate", guarded<validateWorld>},
       {"set_gravity", guarded<setGravity>},
       {"gravity", guarded<gravity>},
       {"time", guarded<worldTime>},

@@ -176,7 +176,8 @@ void addGraspCommand(CLI::App& app, GraspOptions& options) {
   cmd->add_option("--pose", options.pose, "Hand pose in the world: tx,ty,tz,qw,qx,qy,qz (mm)");
   cmd->add_option("--dofs", options.dofs, "DOF values, comma-separated (rad or mm)");
   cmd->add_flag("--autograsp", options.autograsp, "Close the hand until it stops (GraspIt!'s)");
-  cmd->add_option("--gws", options.gws, "Grasp wrench space: L1 or Linf")->default_val("L1");
+  cmd->add_option("--gws", options.gws, "Grasp wrench space: L1 or Linf")
+      ->default_val(std::string(nameOf(GraspRequest{}.wrenchSpace.type)));
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 

@@ -19,7 +19,7 @@ struct GraspOptions {
   std::string pose;    // tx,ty,tz,qw,qx,qy,qz (mm, world)
   std::string dofs;    // comma-separated DOF values
   bool autograsp = false;
-  std::string gws = "L1";
+  std::string gws;  // default: GraspRequest's, set by addGraspCommand
   bool json = false;
 };
 

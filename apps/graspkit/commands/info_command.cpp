@@ -29,7 +29,7 @@ json pose(const std::string& name, const Transform& t) {
 json bodyJson(const Body& body) {
   const BodyModel& m = *body.model;
   json j = pose(body.name, body.pose);
-  j["kind"] = body.kind == BodyKind::Graspable ? "graspable" : "obstacle";
+  j["kind"] = nameOf(body.kind);
   j["file"] = m.file.string();
   j["material"] = std::string(nameOf(m.material));
   j["triangles"] = m.mesh->triangleCount();
@@ -191,7 +191,7 @@ void addInfoCommand(CLI::App& app, InfoOptions& options) {
 int runInfo(const InfoOptions& options, std::ostream& out) {
   World world = loadAnyFile(options.file, options.load.options());
   // --robot is checked even without --dofs: a wrong name or index must not pass unnoticed.
-  const int robot = options.robot.empty() ? 0 : robotByNameOrIndex(world, options.robot);
+  const int robot = options.robot.empty() ? 0 : chooseHand(world, options.robot);
   if (!options.dofs.empty()) {
     if (world.robotCount() == 0) throw Error("--dofs: the file has no robot");
     world.setDofValues(robot, parseNumberList(options.dofs, "--dofs"));

@@ -13,7 +13,7 @@
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/input_file.hpp"
 #include "graspkit/base/output_file.hpp"
-#include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/host/object_task.hpp"
 #include "graspkit/model/material.hpp"
 #include "graspkit/model/object_generator.hpp"
 #include "support/argument_checks.hpp"
@@ -23,9 +23,6 @@ namespace graspkit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::vector<std::string> kKindNames = {"box", "cylinder", "sphere", "superquadric",
-                                             "convex_hull"};
 
 ObjectGeneratorOptions generatorOptions(const ObjectsOptions& options) {
   ObjectGeneratorOptions generator;
@@ -41,8 +38,7 @@ ObjectGeneratorOptions generatorOptions(const ObjectsOptions& options) {
   if (!options.kinds.empty()) {
     generator.kinds.clear();
     for (const std::string& name : options.kinds)
-      for (std::size_t k = 0; k < kKindNames.size(); ++k)
-        if (name == kKindNames[k]) generator.kinds.push_back(static_cast<ObjectKind>(k));
+      generator.kinds.push_back(parseNamed<ObjectKind>(name, "--kinds"));
   }
   return generator;
 }
@@ -89,19 +85,21 @@ void addObjectsCommand(CLI::App& app, ObjectsOptions& options) {
   cmd->add_option("--generate", options.generate, "How many objects")
       ->required()
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}));
+  const ObjectGeneratorOptions defaults;  // the generator's own
   cmd->add_option("--seed", options.seed, "The set's seed: object i of a seed never changes")
       ->check(seedNumber())
-      ->default_val(1);
+      ->default_val(defaults.seed);
   cmd->add_option("--out", options.out, "The folder to write into")->required();
-  cmd->add_option("--min-size", options.minSize, "Smallest largest-extent, mm")->default_val(40.0);
-  cmd->add_option("--max-size", options.maxSize, "Largest largest-extent, mm")->default_val(120.0);
+  cmd->add_option("--min-size", options.minSize, "Smallest largest-extent, mm")
+      ->default_val(defaults.minSize);
+  cmd->add_option("--max-size", options.maxSize, "Largest largest-extent, mm")
+      ->default_val(defaults.maxSize);
   cmd->add_option("--density", options.density, "g/cm^3; the mass is the volume times it")
-      ->default_val(0.5);
+      ->default_val(defaults.density * 1e3);
   cmd->add_option("--material", options.material, "Every object's material")
-      ->default_val("plastic");
+      ->default_val(std::string(nameOf(defaults.material)));
   cmd->add_option("--kinds", options.kinds, "The kinds to draw from, in turn (default: all)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(kKindNames));
+      ->delimiter(',');
   cmd->add_flag("--force", options.force, "Replace existing files that differ");
 }
 
@@ -118,11 +116,7 @@ int runObjects(const ObjectsOptions& options, bool quiet, std::ostream& out) {
       options.generate, options.seed, options.minSize, options.maxSize, options.density,
       options.material);
   for (std::size_t i = 0; i < options.generate; ++i) {
-    const GeneratedObject object = generateObject(generator, i);
-    BodyXmlOptions body;
-    body.material = generator.material;
-    body.massGrams = object.mass;
-    saveBodyFiles(staging.path, object.name, object.mesh, body);
+    const host::SavedObject object = host::saveGeneratedObject(staging.path, generator, i);
     written.push_back(object.name + ".off");
     written.push_back(object.name + ".xml");
     listing += fmt::format("{}.xml  # {}, {:.1f} g\n", object.name, object.shape, object.mass);

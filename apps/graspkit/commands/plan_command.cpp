@@ -16,11 +16,11 @@
 #include "graspkit/base/version.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
 #include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/host/plan_task.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/virtual_contact.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/planning/planner.hpp"
-#include "graspkit/plugin/registry.hpp"
 #include "support/argument_checks.hpp"
 #include "support/progress_reporter.hpp"
 #include "support/robot_choice.hpp"
@@ -31,25 +31,11 @@ namespace {
 
 using nlohmann::json;
 
-// The default budget: GraspIt!'s search length (its planner's 40000 annealing steps).
-constexpr std::int64_t kDefaultSteps = 40000;
 // The layout of the plan JSON; raised whenever a field changes meaning or goes away.
 constexpr int kPlanSchemaVersion = 2;
 
-BodyRef objectToGrasp(const World& world, const std::string& name) {
-  const auto& bodies = world.bodies();
-  for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
-    if (name.empty() ? bodies[i].isDynamic() : bodies[i].name == name) return BodyRef::body(i);
-  if (name.empty()) throw Error("the world has no graspable body to plan grasps on");
-  std::string known;
-  for (const Body& b : bodies) known += (known.empty() ? "" : ", ") + b.name;
-  throw Error(fmt::format("--object: no body '{}' in the world (bodies: {})", name, known));
-}
-
 std::map<std::string, std::string> plannerOptions(const PlanOptions& options) {
   std::map<std::string, std::string> result;
-  if (options.planner == "simann") result["mode"] = options.mode;
-  if (!options.preset.empty()) result["preset"] = options.preset;
   for (const std::string& item : options.set) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -224,6 +210,7 @@ std::string progressText(const PlannerProgress& p) {
 }  // namespace
 
 void addPlanCommand(CLI::App& app, PlanOptions& options) {
+  const host::PlanSettings defaults;  // every default is the host layer's
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan grasps with a planner plugin and print the best, each closed and measured");
   cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
@@ -232,43 +219,45 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
                   "The hand: a robot's name or 0-based index (default: the world's first hand)");
   cmd->add_option("--object", options.object, "The body to grasp (default: first graspable)");
   cmd->add_option("--planner", options.planner, "Planner: simann, list, approach or a plugin's")
-      ->default_val("simann");
+      ->default_val(defaults.planner);
   cmd->add_option("--energy", options.energy,
                   "Search energy: contact, potential-quality, guided-potential-quality, "
                   "autograsp-quality, strict-autograsp (or GraspIt!'s names)")
-      ->default_val("contact");
+      ->default_val(defaults.energy);
   cmd->add_option("--space", options.space,
                   "Hand position space: axis-angle, complete, "
                   "ellipsoid, approach")
-      ->default_val("axis-angle");
+      ->default_val(std::string(nameOf(defaults.space)));
   cmd->add_option("--posture", options.posture, "Posture space: eigen or dof")
-      ->default_val("eigen");
+      ->default_val(std::string(nameOf(defaults.posture)));
   cmd->add_option("--mode", options.mode,
                   "simann mode: restarts (many short searches, each closing its best states; "
-                  "any-time) or anneal (GraspIt!'s single search)")
-      ->default_val("restarts");
+                  "any-time; the default) or anneal (GraspIt!'s single search)");
   cmd->add_option("--preset", options.preset,
                   "simann schedule: DEFAULT, LOOP, MODIFIED, STRICT, ONLINE");
   cmd->add_option("--set", options.set, "A planner option KEY=VALUE (repeatable)");
   auto* steps = cmd->add_option(
       "--steps", options.steps,
-      "Steps in total, every stage included (default 40000: GraspIt!'s search length)");
+      fmt::format("Steps in total, every stage included (default {}: GraspIt!'s search length)",
+                  host::kDefaultPlanSteps));
   cmd->add_option("--seconds", options.seconds,
                   "Plan for this long (every stage included) instead of a step count")
       ->excludes(steps)
       ->check(positiveFinite());
   cmd->add_option("--threads", options.threads, "Search threads (default: every core)")
       ->check(CLI::Range(1, 4096));
-  cmd->add_option("--seed", options.seed, "Random seed")->check(seedNumber())->default_val(1);
+  cmd->add_option("--seed", options.seed, "Random seed")
+      ->check(seedNumber())
+      ->default_val(defaults.seed);
   cmd->add_option("--top", options.top, "How many grasps to keep (the best list's size)")
-      ->default_val(20)
+      ->default_val(defaults.top)
       ->check(CLI::Range(1, 10000));
   cmd->add_flag("--validate", options.validate,
                 "Label each grasp physically, as graspkit validate does (the weight in 6 "
                 "directions, 2 s each)");
   cmd->add_option("--validate-seconds", options.validateSeconds,
                   "--validate: simulated seconds per direction")
-      ->default_val(2.0)
+      ->default_val(ValidationRequest{}.seconds)
       ->check(positiveFinite());
   cmd->add_flag("--json", options.json, "Print one JSON object");
   cmd->add_option("--out", options.out,
@@ -276,57 +265,56 @@ void addPlanCommand(CLI::App& app, PlanOptions& options) {
                   "closed as measured)");
 }
 
+// The settings the flags describe; what they leave out is the host layer's default.
+host::PlanSettings planSettings(const PlanOptions& options) {
+  host::PlanSettings settings;
+  settings.planner = options.planner;
+  settings.energy = options.energy;
+  settings.space = parseNamed<PositionSpace>(options.space, "position space");
+  settings.posture = parseNamed<PostureSpace>(options.posture, "posture space");
+  settings.mode = options.mode;
+  settings.preset = options.preset;
+  settings.options = plannerOptions(options);
+  settings.steps = options.steps;
+  settings.seconds = options.seconds;
+  settings.seed = options.seed;
+  settings.threads = options.threads.value_or(0);
+  settings.top = options.top;
+  return settings;
+}
+
 int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
   checkOut(options.out);
   auto world = std::make_shared<World>(loadWorldFile(options.world, options.load.options()));
-  PlanningRequest request;
-  request.world = world;
-  request.robot = chooseHand(*world, options.robot);
-  request.object = objectToGrasp(*world, options.object);
-  request.position = parseNamed<PositionSpace>(options.space, "position space");
-  request.posture = parseNamed<PostureSpace>(options.posture, "posture space");
-  request.energy = options.energy;
-  request.seed = options.seed;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  request.threads = options.threads.value_or(cores);
-  if (request.threads < 1) throw Error(fmt::format("--threads {} is not valid", request.threads));
-  request.bestListSize = options.top;
-  request.options = plannerOptions(options);
-  Registry::global().makeSearchEnergy(request.energy);  // an unknown name fails before planning
+  const host::PlanSettings settings = planSettings(options);
+  const int robot = chooseHand(*world, options.robot);
+  const BodyRef target = chooseObject(*world, options.object);
+  // Checked before planning, so that a bad setting fails at once.
+  host::planningRequest(world, robot, target, settings);
+  host::planningBudget(settings);
 
   // A hand without virtual contacts plans on contacts derived from its geometry: say so.
-  const Robot& handRobot = world->robot(request.robot);
-  const bool derived = handRobot.model().virtualContacts.empty();
-  const std::size_t contactCount =
-      derived ? deriveVirtualContacts(handRobot).size() : handRobot.model().virtualContacts.size();
-  if (derived && !quiet)
+  const host::PlanningContacts contacts = host::planningContacts(*world, robot);
+  if (contacts.derived && !quiet)
     std::cerr << fmt::format(
         "graspkit: note: {} has no virtual contacts; the planner uses {} derived from its "
         "geometry and closing motion (one per moving link's pad, one on the palm)\n",
-        handRobot.name(), contactCount);
-  if (derived && contactCount == 0)
-    throw Error(
-        fmt::format("{} has no virtual contacts and none could be derived from its "
-                    "geometry: no link moves when it closes",
-                    handRobot.name()));
+        world->robot(robot).name(), contacts.count);
 
-  auto planner = Registry::global().makePlanner(options.planner, request);
-  PlanningBudget budget;
-  if (options.seconds)
-    budget.seconds = *options.seconds;
-  else
-    budget.steps = options.steps.value_or(kDefaultSteps);
   ProgressReporter progress(ProgressReporter::forStderr(quiet));
-  budget.progress = [&progress](const PlannerProgress& p) {
-    if (p.fraction >= 1.0)
-      progress.finish(p.fraction, progressText(p));
-    else
-      progress.update(p.fraction, progressText(p));
-    return true;
-  };
-  PlanningRun run = runPlanner(*planner, budget);
+  host::PlanResult run =
+      host::planGrasps(world, robot, target, settings, [&progress](const PlannerProgress& p) {
+        if (p.fraction >= 1.0)
+          progress.finish(p.fraction, progressText(p));
+        else
+          progress.update(p.fraction, progressText(p));
+        return true;
+      });
   progress.clear();
-  finishGrasps(request, run.grasps, request.threads);
+  const PlanningRequest& request = *run.request;
+  const std::size_t contactCount = contacts.count;
+  const bool derived = contacts.derived;
+  const PlanningBudget budget = host::planningBudget(settings);
 
   const Body& object = world->bodies()[static_cast<std::size_t>(request.object.index)];
   const WorldRobot& hand = world->worldRobot(request.robot);

@@ -19,20 +19,21 @@ struct PlanOptions {
   LoadFlags load;
   std::string robot;   // name or 0-based index; the world's first hand when empty
   std::string object;  // the first graspable body when empty
-  std::string planner = "simann";
-  std::string energy = "contact";
-  std::string space = "axis-angle";
-  std::string posture = "eigen";
-  std::string mode = "restarts";
-  std::string preset;            // the planner's default when empty
-  std::vector<std::string> set;  // KEY=VALUE planner options
+  // Defaults: the host layer's (host::PlanSettings), set by addPlanCommand.
+  std::string planner;
+  std::string energy;
+  std::string space;
+  std::string posture;
+  std::optional<std::string> mode;  // simann only; the host layer's default when unset
+  std::string preset;               // the planner's default when empty
+  std::vector<std::string> set;     // KEY=VALUE planner options
   std::optional<std::int64_t> steps;
   std::optional<double> seconds;
   std::optional<int> threads;  // every core when unset
-  std::uint64_t seed = 1;
-  int top = 20;
+  std::uint64_t seed = 0;
+  int top = 0;
   bool validate = false;  // label each grasp physically (graspkit validate)
-  double validateSeconds = 2.0;
+  double validateSeconds = 0.0;
   bool json = false;
   std::filesystem::path out;
 };

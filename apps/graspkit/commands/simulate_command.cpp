@@ -10,10 +10,10 @@
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/host/simulation_task.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/world.hpp"
 #include "support/argument_checks.hpp"
-#include "support/robot_choice.hpp"
 #include "support/simulation_report.hpp"
 
 namespace graspkit::cli {
@@ -37,40 +37,37 @@ void addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   CLI::App* cmd = app.add_subcommand("simulate", "Step a world's dynamics (gravity on by default)");
   cmd->add_option("world", options.world, "World XML")->required()->check(existingFile());
   addLoadFlags(*cmd, options.load);
-  cmd->add_option("--seconds", options.seconds, "Simulated time, s")->default_val(1.0);
-  cmd->add_option("--dt", options.dt, "Time step, s")->default_val(kDefaultTimeStep);
+  const host::SimulationSettings defaults;  // every default is the host layer's
+  cmd->add_option("--seconds", options.seconds, "Simulated time, s")->default_val(defaults.seconds);
+  cmd->add_option("--dt", options.dt, "Time step, s")->default_val(defaults.dt);
   cmd->add_option("--gravity", options.gravity,
                   "Gravity X,Y,Z in mm/s^2, or 'off' as in GraspIt! (default 0,0,-9810)");
   cmd->add_flag("--autograsp", options.autograsp,
                 "Drive the first hand's DOFs towards their closed limits (dynamic autograsp)");
   cmd->add_option("--trajectory", options.trajectory,
                   "Write the state every --every steps, one JSON object per line");
-  cmd->add_option("--every", options.every, "Steps between trajectory lines")->default_val(10);
+  cmd->add_option("--every", options.every, "Steps between trajectory lines")
+      ->default_val(defaults.every);
   cmd->add_option("--out", options.out, "Save the final world as a world XML");
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 
 int runSimulate(const SimulateOptions& options, std::ostream& out) {
-  if (options.every < 1) throw Error("--every must be at least 1");
   World world = loadWorldFile(options.world, options.load.options());
-  if (!options.gravity.empty()) world.setGravity(parseGravity(options.gravity));
-  if (options.autograsp) setClosingTargets(world, chooseHand(world, ""));
+  host::SimulationSettings settings{.seconds = options.seconds,
+                                    .dt = options.dt,
+                                    .autograsp = options.autograsp,
+                                    .every = options.every};
+  if (!options.gravity.empty()) settings.gravity = parseGravity(options.gravity);
 
   std::ofstream trajectory;
   if (!options.trajectory.empty()) {
     trajectory.open(options.trajectory);
     if (!trajectory) throw Error(fmt::format("cannot write {}", options.trajectory.string()));
-    trajectory << dynamicStateJson(world) << "\n";
   }
-  SimulateRequest request{.seconds = options.seconds, .dt = options.dt};
-  int steps = 0;
-  request.onStep = [&](const World& w, const StepReport&) {
-    if (trajectory.is_open() && ++steps % options.every == 0) {
-      trajectory << dynamicStateJson(w) << "\n";
-    }
-    return true;
-  };
-  SimulationOutcome outcome = runSimulation(world, request);
+  const SimulationOutcome outcome = host::simulateWorld(world, settings, [&](const World& w) {
+    if (trajectory.is_open()) trajectory << dynamicStateJson(w) << "\n";
+  });
   if (trajectory.is_open()) {
     trajectory.flush();
     if (!trajectory) throw Error(fmt::format("cannot write {}", options.trajectory.string()));

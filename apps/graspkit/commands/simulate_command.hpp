@@ -14,12 +14,12 @@ namespace graspkit::cli {
 struct SimulateOptions {
   std::filesystem::path world;
   LoadFlags load;
-  double seconds = 1.0;
-  double dt = 0.0025;
+  double seconds = 0.0;  // defaults: the host layer's (host::SimulationSettings)
+  double dt = 0.0;
   std::string gravity;  // "X,Y,Z" or "off"; the world's default when empty
   bool autograsp = false;
   std::filesystem::path trajectory;
-  int every = 10;
+  int every = 0;
   std::filesystem::path out;
   bool json = false;
 };

@@ -63,7 +63,7 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--top", options.top, "Plans: the first N grasps")->check(CLI::Range(1, 1000000));
   cmd->add_option("--seconds", options.seconds, "Simulated seconds per direction")
-      ->default_val(2.0)
+      ->default_val(ValidationRequest{}.seconds)
       ->check(positiveFinite());
   cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)")
       ->check(CLI::Range(1, 4096));

@@ -1,7 +1,10 @@
 #pragma once
-// Which robot a command works on.
+// Which robot and which body a command works on: the host layer chooses (graspkit/host/
+// subject.hpp), and the errors name the flag.
 
 #include <string>
+
+#include "graspkit/model/body_ref.hpp"
 
 namespace graspkit {
 class World;
@@ -9,12 +12,10 @@ class World;
 
 namespace graspkit::cli {
 
-// --robot names a robot by its name or its 0-based index (as the JSON lists robots and the C ABI
-// counts them; Lua counts from 1, as Lua does). Throws graspkit::Error naming the world's robots
-// when there is no such robot.
-int robotByNameOrIndex(const World& world, const std::string& robot);
-// The robot grasp and plan work on: --robot when given, else the world's first hand, as
-// GraspIt! picks its current hand. Throws graspkit::Error when there is none.
+// --robot: a robot's name or 0-based index; the world's first hand when empty. Throws
+// graspkit::Error naming --robot and the world's robots.
 int chooseHand(const World& world, const std::string& robot);
+// --object: a body's name; the world's first graspable body when empty.
+BodyRef chooseObject(const World& world, const std::string& object);
 
 }  // namespace graspkit::cli

@@ -9,17 +9,13 @@ namespace graspkit::cli {
 
 using nlohmann::json;
 
-namespace {
-
-constexpr const char* kDirectionNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-
-}  // namespace
+using host::kValidationDirections;
 
 json validationJson(const ValidationResult& result) {
   json directions = json::array();
   for (int k = 0; k < 6; ++k) {
     const DirectionResult& d = result.directions[k];
-    json entry = {{"direction", kDirectionNames[k]},
+    json entry = {{"direction", kValidationDirections[k]},
                   {"held", d.held},
                   {"slip_mm", d.slip},
                   {"turn_deg", d.turn * 180.0 / M_PI},
@@ -36,30 +32,10 @@ std::string validationLine(const ValidationResult& result) {
   std::string line = result.held ? "held" : "not held";
   for (int k = 0; k < 6; ++k) {
     const DirectionResult& d = result.directions[k];
-    line += fmt::format("  {} {} ({:.1f} mm, {:.0f} deg)", kDirectionNames[k],
+    line += fmt::format("  {} {} ({:.1f} mm, {:.0f} deg)", kValidationDirections[k],
                         d.held ? "ok" : "lost", d.slip, d.turn * 180.0 / M_PI);
   }
   return line;
-}
-
-SimulationOutcome runSimulation(World& world, const SimulateRequest& request) {
-  SimulationOutcome outcome;
-  SimulateRequest counted = request;
-  counted.onStep = [&](const World& w, const StepReport& report) {
-    ++outcome.result.steps;
-    outcome.result.last = report;
-    return !request.onStep || request.onStep(w, report);
-  };
-  try {
-    outcome.result = simulate(world, counted);
-    outcome.completed = true;
-    outcome.stopReason = "completed";
-  } catch (const DynamicsError& error) {
-    outcome.result.time = world.time();
-    outcome.stopReason = error.what();
-    outcome.failureState = error.state();
-  }
-  return outcome;
 }
 
 json simulationJson(const World& world, const SimulationOutcome& outcome) {

@@ -7,18 +7,11 @@
 
 #include "graspkit/dynamics/dynamics.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
+#include "graspkit/host/simulation_task.hpp"
 
 namespace graspkit::cli {
 
-struct SimulationOutcome {
-  bool completed = false;
-  SimulateResult result;
-  std::string stopReason;    // "completed", or the error that stopped the simulation
-  std::string failureState;  // the state before the failed step (JSON), when it failed
-};
-
-// Runs simulate(); a DynamicsError becomes a failed outcome instead of an exception.
-SimulationOutcome runSimulation(World& world, const SimulateRequest& request);
+using host::SimulationOutcome;
 
 nlohmann::json simulationJson(const World& world, const SimulationOutcome& outcome);
 void printSimulation(const World& world, const SimulationOutcome& outcome, std::ostream& out);

@@ -41,7 +41,7 @@ extern "C" {
 #endif
 
 /* The ABI's version: raised whenever a signature, a struct layout or an enum value changes. */
-#define GRASPKIT_ABI_VERSION 1
+#define GRASPKIT_ABI_VERSION 2
 
 typedef enum graspkit_status {
   GRASPKIT_OK = 0,
@@ -111,6 +111,16 @@ typedef struct graspkit_load_options {
   const char* const* roots; /* folders searched first for a world's <filename>s (--root) */
   size_t root_count;
   int generic_robots; /* nonzero: a robot of an unknown type loads as a generic hand */
+  /* URDF hands, as graspkit's flags of the same names (all may be NULL / 0): */
+  const char* const* package_paths; /* folders holding the packages package:// names */
+  size_t package_path_count;
+  const char* palm;          /* the link taken as the palm (NULL: the root link) */
+  const char* urdf_material; /* every link's material (NULL: rubber) */
+  const char* srdf;          /* <disable_collisions> pairs (NULL: the .srdf beside the URDF) */
+  /* closing[i] for DOF i of close_count: +1 closes towards the upper limit, -1 the lower, 0 as
+   * the file or the inferred direction says */
+  const int32_t* closing;
+  size_t close_count;
 } graspkit_load_options;
 
 /* An empty world. */
@@ -131,6 +141,8 @@ GRASPKIT_C_API graspkit_status graspkit_world_add_file(graspkit_world* world, co
                                                        const graspkit_load_options* options,
                                                        int32_t* first_body, int32_t* first_robot);
 GRASPKIT_C_API void graspkit_world_free(graspkit_world* world);
+/* Removes free body `body` (an obstacle or graspable body); later bodies move down one index. */
+GRASPKIT_C_API graspkit_status graspkit_world_remove_body(graspkit_world* world, int32_t body);
 
 /* ---- Bodies --------------------------------------------------------------------------------- */
 
@@ -309,8 +321,11 @@ typedef struct graspkit_plan_options {
   int64_t steps;       /* the budget in steps; 0 with seconds = 0 means 40000 */
   double seconds;      /* the budget in wall seconds, when steps is 0 */
   uint64_t seed;
-  int32_t threads; /* 0: one per core */
-  int32_t top;     /* how many grasps to keep */
+  int32_t threads;     /* 0: one per core */
+  int32_t top;         /* how many grasps to keep */
+  const char* mode;    /* simann: "restarts" or "anneal"; NULL: restarts (other planners: NULL) */
+  const char* space;   /* hand position space: "axis-angle" (NULL), "complete", ... */
+  const char* posture; /* posture space: "eigen" (NULL) or "dof" */
 } graspkit_plan_options;
 
 typedef struct graspkit_planned_grasp {
@@ -325,7 +340,8 @@ typedef struct graspkit_planned_grasp {
 
 typedef struct graspkit_plan graspkit_plan;
 
-/* The defaults: simann, contact energy, 40000 steps, seed 1, one thread per core, top 20. */
+/* The defaults, the same as every front end's (graspkit plan, Lua, Python): simann in restarts
+ * mode, contact energy, 40000 steps, seed 1, one thread per core, top 20, axis-angle, eigen. */
 GRASPKIT_C_API graspkit_status graspkit_plan_options_default(graspkit_plan_options* options);
 /* Plans grasps of body `object` with robot `robot` (the world is not changed), closes the hand
  * on each and measures them, best first. `options` may be NULL for the defaults. */
@@ -344,6 +360,134 @@ GRASPKIT_C_API graspkit_status graspkit_plan_grasp_dofs(const graspkit_plan* pla
 GRASPKIT_C_API graspkit_status graspkit_plan_grasp_world(const graspkit_plan* plan, size_t index,
                                                          graspkit_world** world);
 GRASPKIT_C_API void graspkit_plan_free(graspkit_plan* plan);
+
+/* ---- Dynamics and validation ---------------------------------------------------------------- */
+
+typedef struct graspkit_step_report {
+  double time; /* the world's time after the step, s */
+  int32_t contacts;
+  int32_t active_contacts;
+  int32_t joint_limits;
+} graspkit_step_report;
+
+/* Advances the world's dynamics by dt seconds (0: the default, 0.0025). `report` may be NULL. A
+ * state the step cannot continue from is GRASPKIT_ERROR_INPUT with the reason. */
+GRASPKIT_C_API graspkit_status graspkit_world_step(graspkit_world* world, double dt,
+                                                   graspkit_step_report* report);
+
+typedef struct graspkit_simulation_options {
+  double seconds;    /* simulated time, s */
+  double dt;         /* time step, s */
+  int use_gravity;   /* nonzero: set gravity first; 0: the world's own */
+  double gravity[3]; /* mm/s^2 */
+  int autograsp;     /* nonzero: drive the first hand's DOFs towards their closing limits */
+  int32_t every;     /* steps between calls of `frame` */
+  /* Called with the world before the first step and after every `every` steps (may be NULL). */
+  void (*frame)(const graspkit_world* world, void* user);
+  void* user;
+} graspkit_simulation_options;
+
+typedef struct graspkit_simulation_result {
+  int completed; /* 0: the simulation stopped on a bad state (graspkit_simulation_stop_reason) */
+  int32_t steps;
+  double time;
+  graspkit_step_report last;
+} graspkit_simulation_result;
+
+/* The defaults, as graspkit simulate's: 1 s, dt 0.0025, the world's gravity, every 10 steps. */
+GRASPKIT_C_API graspkit_status
+graspkit_simulation_options_default(graspkit_simulation_options* options);
+/* Steps the world as graspkit simulate does; `options` may be NULL. A simulation that blows up
+ * is not an error: `completed` is 0 and graspkit_last_error says why. */
+GRASPKIT_C_API graspkit_status graspkit_world_simulate(graspkit_world* world,
+                                                       const graspkit_simulation_options* options,
+                                                       graspkit_simulation_result* result);
+
+typedef struct graspkit_direction_result {
+  double direction[3]; /* unit, world frame: +x, -x, +y, -y, +z, -z in turn */
+  int held;
+  double slip;    /* mm, the object's largest travel relative to the palm */
+  double turn;    /* rad */
+  double seconds; /* simulated */
+} graspkit_direction_result;
+
+typedef struct graspkit_validation {
+  int held; /* every direction held */
+  int32_t directions_held;
+  graspkit_direction_result directions[6];
+} graspkit_validation;
+
+/* Labels the grasp the world holds (its first hand closed on its first graspable body) as
+ * graspkit validate does; `seconds` per direction (0: 2). The world is not changed. */
+GRASPKIT_C_API graspkit_status graspkit_validate(const graspkit_world* world, double seconds,
+                                                 graspkit_validation* validation);
+
+/* ---- Pictures and generated objects --------------------------------------------------------- */
+
+typedef struct graspkit_render_options {
+  int32_t width;
+  int32_t height;
+  const char* camera; /* auto, world, iso, +x, -x, +y, -y, +z, -z (NULL: auto) */
+  int contacts;       /* nonzero: mark the first hand's contacts with the first graspable body */
+  int32_t samples;    /* per pixel along each axis, 1..4 */
+} graspkit_render_options;
+
+/* 640 x 480, auto camera, no contacts, 1 sample: graspkit render's defaults. */
+GRASPKIT_C_API graspkit_status graspkit_render_options_default(graspkit_render_options* options);
+/* Draws the world as graspkit render does into `rgb` (height rows of width RGB pixels, top row
+ * first: capacity >= width * height * 3 bytes); `png` (may be NULL) also writes a PNG there. */
+GRASPKIT_C_API graspkit_status graspkit_world_render(const graspkit_world* world,
+                                                     const graspkit_render_options* options,
+                                                     uint8_t* rgb, size_t capacity,
+                                                     const char* png);
+
+/* Writes object `index` of the set `seed` describes (graspkit objects' default sizes, density
+ * and material, every kind in turn) into `folder` as NAME.off and NAME.xml; `xml_path` gets the
+ * Body XML's path (as graspkit_body_name copies strings). */
+GRASPKIT_C_API graspkit_status graspkit_generate_object(const char* folder, uint64_t seed,
+                                                        size_t index, char* xml_path,
+                                                        size_t capacity, size_t* length);
+
+/* ---- Grasp datasets ------------------------------------------------------------------------- */
+
+typedef struct graspkit_dataset graspkit_dataset;
+
+typedef struct graspkit_dataset_options {
+  int32_t grasps; /* the best list's size */
+  int64_t steps;  /* the planner's budget (0: 40000) */
+  uint64_t seed;
+  int validate; /* nonzero: label each grasp physically */
+  double validate_seconds;
+} graspkit_dataset_options;
+
+typedef struct graspkit_dataset_grasp {
+  graspkit_pose pregrasp; /* the hand, open, in the object's frame */
+  graspkit_pose grasp;    /* the hand, closed, in the object's frame */
+  double epsilon;
+  double volume;
+  int force_closure;
+  int held; /* 1 held, 0 not, -1 not validated */
+  int32_t contacts;
+} graspkit_dataset_grasp;
+
+/* graspkit batch's defaults for one object: 20 grasps, 40000 steps, seed 1, not validated. */
+GRASPKIT_C_API graspkit_status graspkit_dataset_options_default(graspkit_dataset_options* options);
+/* Plans one object's dataset as graspkit batch does: `hand` a robot file, `object` a body file,
+ * the object at the origin. `load` and `options` may be NULL. */
+GRASPKIT_C_API graspkit_status graspkit_dataset_plan(const char* hand, const char* object,
+                                                     const graspkit_load_options* load,
+                                                     const graspkit_dataset_options* options,
+                                                     graspkit_dataset** dataset);
+/* Reads a dataset file; writes one, atomically. */
+GRASPKIT_C_API graspkit_status graspkit_dataset_load(const char* path, graspkit_dataset** dataset);
+GRASPKIT_C_API graspkit_status graspkit_dataset_save(const graspkit_dataset* dataset,
+                                                     const char* path);
+GRASPKIT_C_API graspkit_status graspkit_dataset_count(const graspkit_dataset* dataset,
+                                                      size_t* count);
+GRASPKIT_C_API graspkit_status graspkit_dataset_get_grasp(const graspkit_dataset* dataset,
+                                                          size_t index,
+                                                          graspkit_dataset_grasp* grasp);
+GRASPKIT_C_API void graspkit_dataset_free(graspkit_dataset* dataset);
 
 /* ---- Lua scenarios -------------------------------------------------------------------------- */
 

@@ -1,4 +1,6 @@
 #include "c_api_support.hpp"
+#include "graspkit/base/enum_names.hpp"
+#include "graspkit/model/material.hpp"
 
 #include <cmath>
 
@@ -109,6 +111,34 @@ BodyRef fromRef(const graspkit_body_ref& ref) {
       throw Failure{GRASPKIT_ERROR_INVALID_ARGUMENT,
                     fmt::format("body reference kind {} is not 0, 1 or 2", ref.kind)};
   }
+}
+
+LoadOptions loadOptions(const graspkit_load_options* options) {
+  LoadOptions result;
+  if (!options) return result;
+  auto paths = [](const char* const* list, std::size_t count, const char* what) {
+    std::vector<std::filesystem::path> out;
+    if (count > 0) require(list, what);
+    for (std::size_t i = 0; i < count; ++i) out.emplace_back(require(list[i], what));
+    return out;
+  };
+  result.roots = paths(options->roots, options->root_count, "options->roots");
+  result.genericRobotFallback = options->generic_robots != 0;
+  result.packagePaths =
+      paths(options->package_paths, options->package_path_count, "options->package_paths");
+  if (options->palm) result.urdfPalm = options->palm;
+  if (options->srdf) result.srdf = options->srdf;
+  if (options->urdf_material)
+    result.urdfMaterial = parseNamed<Material>(options->urdf_material, "material");
+  if (options->close_count > 0) require(options->closing, "options->closing");
+  for (std::size_t i = 0; i < options->close_count; ++i) {
+    const std::int32_t sign = options->closing[i];
+    if (sign < -1 || sign > 1)
+      throw Failure{GRASPKIT_ERROR_INVALID_ARGUMENT,
+                    fmt::format("options->closing[{}] is {}: -1, 0 or +1 expected", i, sign)};
+    if (sign != 0) result.closingDirections[static_cast<int>(i)] = sign;
+  }
+  return result;
 }
 
 }  // namespace graspkit::c_api

@@ -12,13 +12,13 @@
 #include "graspkit.h"
 #include "graspkit/base/error.hpp"
 #include "graspkit/grasp/grasp.hpp"
+#include "graspkit/host/world_session.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/planning/planner.hpp"
 #include "graspkit/raycast/ray_scene.hpp"
 
-struct graspkit_world {
-  graspkit::World world;
-};
+// The host layer's world handle: the world, its file, its model cache.
+struct graspkit_world : graspkit::host::WorldSession {};
 
 struct graspkit_grasp {
   graspkit::Grasp grasp;
@@ -100,5 +100,15 @@ Transform toTransform(const graspkit_pose& pose);
 graspkit_pose toPose(const Transform& transform);
 graspkit_body_ref toRef(const BodyRef& ref);
 BodyRef fromRef(const graspkit_body_ref& ref);
+
+// The load options a graspkit_load_options describes (NULL: the defaults).
+LoadOptions loadOptions(const graspkit_load_options* options);
+
+// A new C handle holding `session`.
+inline graspkit_world* newWorld(host::WorldSession session) {
+  auto* world = new graspkit_world;
+  static_cast<host::WorldSession&>(*world) = std::move(session);
+  return world;
+}
 
 }  // namespace graspkit::c_api

@@ -6,14 +6,13 @@
 #include <fmt/format.h>
 
 #include "c_api_support.hpp"
-#include "graspkit/plugin/registry.hpp"
+#include "graspkit/base/enum_names.hpp"
+#include "graspkit/host/plan_task.hpp"
 
 using namespace graspkit;
 using namespace graspkit::c_api;
 
 namespace {
-
-constexpr std::int64_t kDefaultSteps = 40000;  // GraspIt!'s search length, as `graspkit plan`
 
 const graspkit_plan& planOf(const graspkit_plan* plan) {
   return *require(plan, "plan");
@@ -33,15 +32,20 @@ extern "C" {
 
 graspkit_status graspkit_plan_options_default(graspkit_plan_options* options) {
   return guarded([&] {
+    // The host layer's defaults; the strings live as long as the program.
+    static const host::PlanSettings defaults;
     graspkit_plan_options& o = *require(options, "options");
     o = graspkit_plan_options{};
-    o.planner = "simann";
-    o.energy = "contact";
-    o.steps = kDefaultSteps;
+    o.planner = defaults.planner.c_str();
+    o.energy = defaults.energy.c_str();
+    o.steps = host::kDefaultPlanSteps;
     o.seconds = 0.0;
-    o.seed = 1;
-    o.threads = 0;
-    o.top = 20;
+    o.seed = defaults.seed;
+    o.threads = defaults.threads;
+    o.top = defaults.top;
+    o.mode = nullptr;  // simann's default mode
+    o.space = nameOf(defaults.space).data();
+    o.posture = nameOf(defaults.posture).data();
   });
 }
 
@@ -52,37 +56,29 @@ graspkit_status graspkit_plan_grasps(const graspkit_world* world, int32_t robot,
     require(plan, "plan");
     checkedRobot(w, robot);
     checkedBody(w, object);
-    graspkit_plan_options o;
-    graspkit_plan_options_default(&o);
-    if (options) o = *options;
-    if (!o.planner) o.planner = "simann";
-    if (!o.energy) o.energy = "contact";
-    if (o.steps < 0 || std::isnan(o.seconds) || o.seconds < 0 || o.threads < 0 || o.top < 1)
-      throw Error(
-          fmt::format("plan options: steps {}, seconds {}, threads {}, top {}: steps and "
-                      "seconds must be >= 0, threads >= 0 and top >= 1",
-                      o.steps, o.seconds, o.threads, o.top));
-
+    host::PlanSettings settings;
+    if (options) {
+      const graspkit_plan_options& o = *options;
+      if (o.steps < 0 || std::isnan(o.seconds) || o.seconds < 0)
+        throw Error(fmt::format("plan options: steps {}, seconds {}: both must be >= 0", o.steps,
+                                o.seconds));
+      if (o.planner) settings.planner = o.planner;
+      if (o.energy) settings.energy = o.energy;
+      if (o.steps > 0)
+        settings.steps = o.steps;
+      else if (o.seconds > 0)
+        settings.seconds = o.seconds;
+      settings.seed = o.seed;
+      settings.threads = o.threads;
+      settings.top = o.top;
+      if (o.mode) settings.mode = o.mode;
+      if (o.space) settings.space = parseNamed<PositionSpace>(o.space, "position space");
+      if (o.posture) settings.posture = parseNamed<PostureSpace>(o.posture, "posture space");
+    }
+    host::PlanResult run = host::planGrasps(std::make_shared<const World>(w.clone()), robot,
+                                            BodyRef::body(object), settings);
     auto result = std::make_unique<graspkit_plan>();
-    PlanningRequest& request = result->request;
-    request.world = std::make_shared<World>(w.clone());
-    request.robot = robot;
-    request.object = BodyRef::body(object);
-    request.energy = o.energy;
-    request.seed = o.seed;
-    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    request.threads = o.threads > 0 ? o.threads : cores;
-    request.bestListSize = o.top;
-    if (std::string(o.planner) == "simann") request.options["mode"] = "restarts";
-    Registry::global().makeSearchEnergy(request.energy);  // an unknown name fails first
-    auto planner = Registry::global().makePlanner(o.planner, request);
-    PlanningBudget budget;
-    if (o.steps > 0 || o.seconds <= 0)
-      budget.steps = o.steps > 0 ? o.steps : kDefaultSteps;
-    else
-      budget.seconds = o.seconds;
-    PlanningRun run = runPlanner(*planner, budget);
-    finishGrasps(request, run.grasps, request.threads);
+    result->request = *run.request;
     result->grasps = std::move(run.grasps);
     *plan = result.release();
   });
@@ -125,7 +121,7 @@ graspkit_status graspkit_plan_grasp_world(const graspkit_plan* plan, size_t inde
     const graspkit_plan& p = planOf(plan);
     const PlannedGrasp& g = graspAt(p, index);
     require(world, "world");
-    *world = new graspkit_world{graspWorld(p.request, g)};
+    *world = newWorld(host::WorldSession{graspWorld(p.request, g)});
   });
 }
 

@@ -10,16 +10,6 @@ using namespace graspkit::c_api;
 
 namespace {
 
-LoadOptions loadOptions(const graspkit_load_options* options) {
-  LoadOptions result;
-  if (!options) return result;
-  if (options->root_count > 0) require(options->roots, "options->roots");
-  for (std::size_t i = 0; i < options->root_count; ++i)
-    result.roots.emplace_back(require(options->roots[i], "options->roots[i]"));
-  result.genericRobotFallback = options->generic_robots != 0;
-  return result;
-}
-
 World& worldOf(graspkit_world* world) {
   return require(world, "world")->world;
 }
@@ -36,20 +26,6 @@ template <class Names>
                                                       name, known.empty() ? "none" : known)};
 }
 
-void mergeInto(World& target, World&& source) {
-  const int robot_offset = target.robotCount();
-  for (Body& body : source.bodies()) target.addBody(std::move(body));
-  for (int r = 0; r < source.robotCount(); ++r) {
-    const WorldRobot& robot = source.worldRobot(r);
-    target.addRobot(robot.robot, robot.filename);
-  }
-  for (Connection connection : source.connections()) {
-    connection.parentRobot += robot_offset;
-    connection.childRobot += robot_offset;
-    target.connect(std::move(connection));
-  }
-}
-
 }  // namespace
 
 extern "C" {
@@ -58,7 +34,7 @@ graspkit_status graspkit_world_new(graspkit_world** world) {
   return guarded([&] {
     // Checked first: in `*p = new T`, the new is evaluated before p, and would leak.
     require(world, "world");
-    *world = new graspkit_world{};
+    *world = new graspkit_world;
   });
 }
 
@@ -66,34 +42,30 @@ graspkit_status graspkit_world_load(const char* path, const graspkit_load_option
                                     graspkit_world** world) {
   return guarded([&] {
     require(world, "world");
-    World loaded = loadAnyFile(require(path, "path"), loadOptions(options));
-    *world = new graspkit_world{std::move(loaded)};
+    host::WorldSession loaded =
+        host::WorldSession::load(require(path, "path"), loadOptions(options));
+    *world = newWorld(std::move(loaded));
   });
 }
 
 graspkit_status graspkit_world_clone(const graspkit_world* world, graspkit_world** clone) {
   return guarded([&] {
     require(clone, "clone");
-    *clone = new graspkit_world{worldOf(world).clone()};
+    *clone = newWorld(require(world, "world")->clone());
   });
 }
 
 graspkit_status graspkit_world_save(const graspkit_world* world, const char* path) {
-  return guarded([&] { saveWorldFile(worldOf(world), require(path, "path")); });
+  // A copy of the handle, so that saving from a const handle does not record the file.
+  return guarded([&] { require(world, "world")->clone().save(require(path, "path")); });
 }
 
 graspkit_status graspkit_world_add_file(graspkit_world* world, const char* path,
                                         const graspkit_load_options* options, int32_t* first_body,
                                         int32_t* first_robot) {
   return guarded([&] {
-    World& target = worldOf(world);
-    World added = loadAnyFile(require(path, "path"), loadOptions(options));
-    // Merge into a copy, so that a failure half way leaves the caller's world as it was.
-    World merged = target.clone();
-    const auto bodies = static_cast<int32_t>(merged.bodies().size());
-    const auto robots = static_cast<int32_t>(merged.robotCount());
-    mergeInto(merged, std::move(added));
-    target = std::move(merged);
+    const auto [bodies, robots] =
+        require(world, "world")->addFile(require(path, "path"), loadOptions(options));
     if (first_body) *first_body = bodies;
     if (first_robot) *first_robot = robots;
   });
@@ -101,6 +73,14 @@ graspkit_status graspkit_world_add_file(graspkit_world* world, const char* path,
 
 void graspkit_world_free(graspkit_world* world) {
   delete world;
+}
+
+graspkit_status graspkit_world_remove_body(graspkit_world* world, int32_t body) {
+  return guarded([&] {
+    graspkit_world& handle = *require(world, "world");
+    checkedBody(handle.world, body);
+    handle.removeBody(body);
+  });
 }
 
 graspkit_status graspkit_world_body_count(const graspkit_world* world, int32_t* count) {

@@ -5,6 +5,7 @@
 
 #include "graspkit/grasp/grasp.hpp"
 #include "graspkit/grasp/quality.hpp"
+#include "graspkit/host/subject.hpp"
 #include "graspkit/plugin/registry.hpp"
 #include "python_support.hpp"
 
@@ -153,10 +154,11 @@ void bindGraspClass(py::module_& m) {
 }
 
 BodyRef firstGraspable(const WorldHandle& world) {
-  const auto& bodies = world.world.bodies();
-  for (std::size_t i = 0; i < bodies.size(); ++i)
-    if (bodies[i].isDynamic()) return BodyRef::body(static_cast<int>(i));
-  throw py::value_error("the world has no graspable body");
+  try {
+    return host::defaultObject(world.world);
+  } catch (const Error& e) {
+    throw py::value_error(e.what());
+  }
 }
 
 }  // namespace
@@ -170,15 +172,18 @@ void bindGrasp(py::module_& m) {
       "grasp",
       [](const RobotView& r, const py::object& object, const std::string& gws) {
         GraspRequest request;
-        const auto type = valueNamed<WrenchSpaceType>(gws);
-        if (!type) throw py::value_error(fmt::format("gws '{}': \"L1\" or \"Linf\" expected", gws));
-        request.wrenchSpace.type = *type;
+        try {
+          request.wrenchSpace.type = parseNamed<WrenchSpaceType>(gws, "wrench space");
+        } catch (const Error& e) {
+          throw py::value_error(e.what());
+        }
         const BodyRef target =
             object.is_none() ? firstGraspable(*r.world) : toBodyRef(*r.world, object, "object");
         r.robot();
         return BoundGrasp{r.world, analyzeGrasp(r.world->world, r.index, target, request)};
       },
-      py::arg("object") = py::none(), py::kw_only(), py::arg("gws") = "L1",
+      py::arg("object") = py::none(), py::kw_only(),
+      py::arg("gws") = std::string(nameOf(GraspRequest{}.wrenchSpace.type)),
       "The hand's contacts with `object` (a Body or a name; default: the first graspable body) "
       "as the world stands, their wrench space (L1 or Linf) and its quality.");
 }

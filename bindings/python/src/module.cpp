@@ -17,4 +17,6 @@ PYBIND11_MODULE(_graspkit, m) {
   gp::bindRays(m);
   gp::bindPlanning(m);
   gp::bindPlugins(m);
+  gp::bindDynamics(m);
+  gp::bindDatasets(m);
 }

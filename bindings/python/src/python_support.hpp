@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,7 +15,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "graspkit/io/common/model_cache.hpp"
+#include "graspkit/host/world_session.hpp"
+#include "graspkit/io/common/load_options.hpp"
 #include "graspkit/math/transform.hpp"
 #include "graspkit/model/body_ref.hpp"
 #include "graspkit/model/world.hpp"
@@ -23,20 +25,19 @@ namespace graspkit::python {
 
 namespace py = pybind11;
 
-// A world as Python holds it. Body and Robot views hold a shared pointer to it, so a view keeps
-// its world alive. Meshes loaded through one world are cached for the next file it loads.
-struct WorldHandle {
-  World world;
-  std::filesystem::path file;  // where it was loaded from or last saved; empty for a new world
-  ModelCache cache;
-};
+// A world as Python holds it: the host layer's world handle (world, file, model cache,
+// removals). Body and Robot views hold a shared pointer to it, so a view keeps its world alive.
+using WorldHandle = host::WorldSession;
 using WorldPtr = std::shared_ptr<WorldHandle>;
 
-// A free body of a world (an obstacle or a graspable object), by index.
+// A free body of a world (an obstacle or a graspable object), by index. The index follows the
+// world's remove_body calls made after the view was.
 struct BodyView {
+  BodyView(WorldPtr w, int i) : world(std::move(w)), index(i), seen(world->removedBodies.size()) {}
   WorldPtr world;
-  int index = 0;
-  Body& body() const;  // throws IndexError when the body no longer exists
+  mutable int index = 0;
+  mutable std::size_t seen = 0;  // of world->removedBodies
+  Body& body() const;            // throws IndexError when the body no longer exists or was removed
 };
 
 // A robot of a world, by index.
@@ -84,6 +85,21 @@ BodyRef toBodyRef(const WorldHandle& world, const py::handle& body, const char* 
 // A robot by Robot view of `world`, 0-based index or name; none gives the world's first hand.
 int toRobotIndex(const WorldHandle& world, const py::handle& robot);
 
+// The load options load_world, add_robot and plan_dataset take, as `graspkit`'s load flags:
+// model roots, generic robots, and for URDF hands the package path, palm, materials, closing
+// directions ({dof: "+" or "-"}) and SRDF.
+struct LoadArguments {
+  std::vector<std::filesystem::path> roots;
+  bool genericRobots = false;
+  std::vector<std::filesystem::path> packagePath;
+  std::string palm;
+  std::string urdfMaterial;
+  std::map<std::string, std::string> linkMaterials;
+  std::map<int, std::string> close;
+  std::filesystem::path srdf;
+  LoadOptions options() const;
+};
+
 void bindErrors(py::module_& m);
 void bindPoses(py::module_& m);
 void bindWorld(py::module_& m);
@@ -92,5 +108,7 @@ void bindGrasp(py::module_& m);
 void bindRays(py::module_& m);
 void bindPlanning(py::module_& m);
 void bindPlugins(py::module_& m);
+void bindDynamics(py::module_& m);
+void bindDatasets(py::module_& m);
 
 }  // namespace graspkit::python

@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/base/enum_names.hpp"
 #include "graspkit/collision/collision.hpp"
 #include "graspkit/grasp/grasp.hpp"
+#include "graspkit/host/subject.hpp"
 #include "graspkit/io/graspit/body_file.hpp"
 #include "graspkit/io/graspit/robot_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
@@ -15,6 +17,8 @@
 namespace graspkit::python {
 
 Body& BodyView::body() const {
+  if (!world->followRemovals(index, seen))
+    throw py::index_error("the body was removed from its world");
   auto& bodies = world->world.bodies();
   if (index < 0 || index >= static_cast<int>(bodies.size()))
     throw py::index_error(fmt::format("body {} no longer exists", index));
@@ -45,8 +49,11 @@ BodyRef toBodyRef(const WorldHandle& world, const py::handle& body, const char* 
 
 int toRobotIndex(const WorldHandle& world, const py::handle& robot) {
   if (robot.is_none()) {
-    if (auto hand = world.world.firstHand()) return *hand;
-    throw py::value_error("the world has no hand");
+    try {
+      return host::defaultHand(world.world);
+    } catch (const Error& e) {
+      throw py::value_error(e.what());
+    }
   }
   if (py::isinstance<RobotView>(robot)) {
     const auto& view = robot.cast<const RobotView&>();
@@ -67,14 +74,26 @@ int toRobotIndex(const WorldHandle& world, const py::handle& robot) {
   return index;
 }
 
-namespace {
-
-LoadOptions loadOptions(const std::vector<std::filesystem::path>& roots, bool generic_robots) {
+LoadOptions LoadArguments::options() const {
   LoadOptions options;
   options.roots = roots;
-  options.genericRobotFallback = generic_robots;
+  options.genericRobotFallback = genericRobots;
+  options.packagePaths = packagePath;
+  options.urdfPalm = palm;
+  options.srdf = srdf;
+  if (!urdfMaterial.empty()) options.urdfMaterial = parseNamed<Material>(urdfMaterial, "material");
+  for (const auto& [link, material] : linkMaterials)
+    options.urdfLinkMaterials[link] = parseNamed<Material>(material, "material");
+  for (const auto& [dof, sign] : close) {
+    if (dof < 0 || (sign != "+" && sign != "-"))
+      throw py::value_error(fmt::format(
+          "close: {{{}: '{}'}} is not {{dof: '+' or '-'}} (dof a 0-based index)", dof, sign));
+    options.closingDirections[dof] = sign == "+" ? 1 : -1;
+  }
   return options;
 }
+
+namespace {
 
 // Files are held by absolute path, so that a world saved elsewhere names them correctly (relative
 // to its own folder when they lie below it, else absolute).
@@ -82,7 +101,7 @@ BodyView addBody(const WorldPtr& world, const std::filesystem::path& relative,
                  const py::object& pose, BodyKind kind) {
   const std::filesystem::path file = std::filesystem::absolute(relative);
   Body body;
-  body.model = loadBodyFile(file, &world->cache);
+  body.model = loadBodyFile(file, world->cache.get());
   body.kind = kind;
   body.setPose(pose.is_none() ? Transform::Identity() : toTransform(pose));
   // The load's warnings reach Python before the world changes: a filter that turns them into
@@ -92,10 +111,10 @@ BodyView addBody(const WorldPtr& world, const std::filesystem::path& relative,
 }
 
 RobotView addRobot(const WorldPtr& world, const std::filesystem::path& relative,
-                   const py::object& pose, bool generic_robots) {
+                   const py::object& pose, const LoadArguments& load) {
   const std::filesystem::path file = std::filesystem::absolute(relative);
   const Transform t = pose.is_none() ? Transform::Identity() : toTransform(pose);
-  Robot robot(loadRobotFile(file, loadOptions({}, generic_robots), &world->cache));
+  Robot robot(loadRobotFile(file, load.options(), world->cache.get()));
   flushWarnings();  // before the world changes, as in addBody
   return withWarnings([&] {
     const int index = world->world.addRobot(std::move(robot), file);
@@ -136,8 +155,8 @@ void bindBody(py::module_& m) {
       .def_property_readonly(
           "index", [](const BodyView& b) { return b.index; },
           "Its 0-based index among the world's bodies.")
-      .def_property_readonly(
-          "kind", [](const BodyView& b) { return b.body().isDynamic() ? "graspable" : "obstacle"; })
+      .def_property_readonly("kind",
+                             [](const BodyView& b) { return std::string(nameOf(b.body().kind)); })
       .def_property_readonly("is_dynamic", [](const BodyView& b) { return b.body().isDynamic(); })
       .def_property(
           "pose", [](const BodyView& b) { return toMatrix(b.body().pose); },
@@ -180,8 +199,7 @@ void bindBody(py::module_& m) {
           "triangles", [](const BodyView& b) { return triangles(b.body()); },
           "The mesh's triangles, (M, 3) vertex indices, counter-clockwise seen from outside.")
       .def("__repr__", [](const BodyView& b) {
-        return fmt::format("<graspkit.Body '{}' ({})>", b.body().name,
-                           b.body().isDynamic() ? "graspable" : "obstacle");
+        return fmt::format("<graspkit.Body '{}' ({})>", b.body().name, nameOf(b.body().kind));
       });
 }
 
@@ -228,25 +246,45 @@ void bindWorldClass(py::module_& m) {
             return addBody(w, file, pose, BodyKind::Obstacle);
           },
           py::arg("file"), py::arg("pose") = py::none(), "Adds a static body.")
-      .def("add_robot", &addRobot, py::arg("file"), py::arg("pose") = py::none(), py::kw_only(),
-           py::arg("generic_robots") = false,
-           "Adds a robot from a GraspIt! robot XML; its type's plugin is loaded on demand.")
+      .def(
+          "add_robot",
+          [](const WorldPtr& w, const std::filesystem::path& file, const py::object& pose,
+             bool generic_robots, std::vector<std::filesystem::path> package_path, std::string palm,
+             std::map<int, std::string> close) {
+            LoadArguments load;
+            load.genericRobots = generic_robots;
+            load.packagePath = std::move(package_path);
+            load.palm = std::move(palm);
+            load.close = std::move(close);
+            return addRobot(w, file, pose, load);
+          },
+          py::arg("file"), py::arg("pose") = py::none(), py::kw_only(),
+          py::arg("generic_robots") = false,
+          py::arg("package_path") = std::vector<std::filesystem::path>{}, py::arg("palm") = "",
+          py::arg("close") = std::map<int, std::string>{},
+          "Adds a robot from a GraspIt! robot XML, a URDF or an MJCF file; its type's plugin is "
+          "loaded on demand. package_path, palm and close as load_world's.")
+      .def(
+          "remove_body",
+          [](const WorldPtr& w, const py::object& body) {
+            const BodyRef ref = toBodyRef(*w, body, "body");
+            if (ref.kind != BodyRef::Kind::Body)
+              throw py::value_error("only obstacles and graspable bodies can be removed");
+            w->removeBody(ref.index);
+          },
+          py::arg("body"),
+          "Removes an obstacle or graspable body (a Body or its name). Body views of later bodies "
+          "follow; views of the removed one raise IndexError.")
       .def(
           "save",
           [](WorldHandle& w, const std::filesystem::path& file) {
-            saveWorldFile(w.world, file, SaveOptions{.root = file.parent_path()});
+            w.save(file);
             w.file = std::filesystem::absolute(file);
           },
           py::arg("file"),
           "Writes a GraspIt! world XML, atomically; files below its folder are named relatively.")
       .def(
-          "clone",
-          [](const WorldHandle& w) {
-            auto copy = std::make_shared<WorldHandle>();
-            copy->world = w.world.clone();
-            copy->file = w.file;
-            return copy;
-          },
+          "clone", [](const WorldHandle& w) { return std::make_shared<WorldHandle>(w.clone()); },
           "An independent copy (meshes are shared, read-only).")
       .def_property_readonly(
           "file",
@@ -285,8 +323,9 @@ void bindWorldClass(py::module_& m) {
           },
           py::arg("which") = py::none(),
           "A robot by 0-based index or name; without an argument the world's first hand.")
-      .def("render", &renderWorld, py::kw_only(), py::arg("width") = 640, py::arg("height") = 480,
-           py::arg("camera") = "auto", py::arg("contacts") = false, py::arg("samples") = 1,
+      .def("render", &renderWorld, py::kw_only(), py::arg("width") = RenderRequest{}.width,
+           py::arg("height") = RenderRequest{}.height, py::arg("camera") = "auto",
+           py::arg("contacts") = false, py::arg("samples") = RenderRequest{}.samples,
            py::arg("out") = py::none(),
            "A ray-cast picture, as `graspkit render` draws it: a (height, width, 3) uint8 array; "
            "`out` also writes it as a PNG. camera: auto, world, iso, +x, -x, +y, -y, +z, -z; "
@@ -301,20 +340,33 @@ void bindWorldClass(py::module_& m) {
 
   m.def(
       "load_world",
-      [](const std::filesystem::path& file, const std::vector<std::filesystem::path>& roots,
-         bool generic_robots) {
+      [](const std::filesystem::path& file, std::vector<std::filesystem::path> roots,
+         bool generic_robots, std::vector<std::filesystem::path> package_path, std::string palm,
+         std::string urdf_material, std::map<std::string, std::string> link_materials,
+         std::map<int, std::string> close, std::filesystem::path srdf) {
+        const LoadArguments load{std::move(roots),         generic_robots,
+                                 std::move(package_path),  std::move(palm),
+                                 std::move(urdf_material), std::move(link_materials),
+                                 std::move(close),         std::move(srdf)};
         return withWarnings([&] {
-          auto handle = std::make_shared<WorldHandle>();
-          handle->world = loadAnyFile(file, loadOptions(roots, generic_robots), &handle->cache);
+          auto handle =
+              std::make_shared<WorldHandle>(host::WorldSession::load(file, load.options()));
           handle->file = std::filesystem::absolute(file);
           return handle;
         });
       },
       py::arg("file"), py::kw_only(), py::arg("roots") = std::vector<std::filesystem::path>{},
       py::arg("generic_robots") = false,
-      "Loads a GraspIt! world, robot or body file (or a bare mesh) into a new World. A world's "
-      "<filename>s are looked up below `roots` first, then $GRASPKIT_ROOT, $GRASPIT, then the "
-      "file's folder and its parents.");
+      py::arg("package_path") = std::vector<std::filesystem::path>{}, py::arg("palm") = "",
+      py::arg("urdf_material") = "",
+      py::arg("link_materials") = std::map<std::string, std::string>{},
+      py::arg("close") = std::map<int, std::string>{}, py::arg("srdf") = std::filesystem::path{},
+      "Loads a GraspIt! world, robot or body file, a URDF or MJCF hand, or a bare mesh into a new "
+      "World. A world's <filename>s are looked up below `roots` first, then $GRASPKIT_ROOT, "
+      "$GRASPIT, then the file's folder and its parents. For URDF hands, as `graspkit`'s flags: "
+      "package_path (folders holding package:// packages), palm (the palm link), urdf_material "
+      "and link_materials ({link: material}), close ({dof: '+' or '-'}: the way a DOF closes) and "
+      "srdf.");
 }
 
 }  // namespace

@@ -2,6 +2,12 @@
 
 namespace graspkit {
 
+std::span<const EnumName<BodyKind>> enumNames(std::type_identity<BodyKind>) {
+  static constexpr EnumName<BodyKind> kNames[] = {{BodyKind::Obstacle, "obstacle"},
+                                                  {BodyKind::Graspable, "graspable"}};
+  return kNames;
+}
+
 void Body::setPose(const Transform& new_pose) {
   pose = new_pose;
   const Vector3 cog = model ? model->cog : Vector3::Zero();

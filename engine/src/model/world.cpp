@@ -40,6 +40,12 @@ std::optional<int> World::firstHand() const {
   return std::nullopt;
 }
 
+std::optional<int> World::firstGraspable() const {
+  for (int i = 0; i < static_cast<int>(bodies_.size()); ++i)
+    if (bodies_[i].isDynamic()) return i;
+  return std::nullopt;
+}
+
 int World::addBody(Body body) {
   if (body.name.empty() && body.model) body.name = body.model->name;
   // GraspIt! names bodies after their files; two copies of one file get a numbered suffix.

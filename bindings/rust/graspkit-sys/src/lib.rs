@@ -6,7 +6,7 @@
 use std::os::raw::{c_char, c_double, c_int, c_void};
 
 /// The ABI version these declarations follow (`GRASPKIT_ABI_VERSION`).
-pub const GRASPKIT_ABI_VERSION: u32 = 1;
+pub const GRASPKIT_ABI_VERSION: u32 = 2;
 
 /// `graspkit_status`.
 pub type graspkit_status = c_int;
@@ -91,6 +91,13 @@ pub struct graspkit_load_options {
     pub roots: *const *const c_char,
     pub root_count: usize,
     pub generic_robots: c_int,
+    pub package_paths: *const *const c_char,
+    pub package_path_count: usize,
+    pub palm: *const c_char,
+    pub urdf_material: *const c_char,
+    pub srdf: *const c_char,
+    pub closing: *const i32,
+    pub close_count: usize,
 }
 
 #[repr(C)]
@@ -150,6 +157,98 @@ pub struct graspkit_plan_options {
     pub seed: u64,
     pub threads: i32,
     pub top: i32,
+    pub mode: *const c_char,
+    pub space: *const c_char,
+    pub posture: *const c_char,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_step_report {
+    pub time: c_double,
+    pub contacts: i32,
+    pub active_contacts: i32,
+    pub joint_limits: i32,
+}
+
+pub type graspkit_frame_fn =
+    Option<unsafe extern "C" fn(world: *const graspkit_world, user: *mut c_void)>;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct graspkit_simulation_options {
+    pub seconds: c_double,
+    pub dt: c_double,
+    pub use_gravity: c_int,
+    pub gravity: [c_double; 3],
+    pub autograsp: c_int,
+    pub every: i32,
+    pub frame: graspkit_frame_fn,
+    pub user: *mut c_void,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_simulation_result {
+    pub completed: c_int,
+    pub steps: i32,
+    pub time: c_double,
+    pub last: graspkit_step_report,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_direction_result {
+    pub direction: [c_double; 3],
+    pub held: c_int,
+    pub slip: c_double,
+    pub turn: c_double,
+    pub seconds: c_double,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_validation {
+    pub held: c_int,
+    pub directions_held: i32,
+    pub directions: [graspkit_direction_result; 6],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct graspkit_render_options {
+    pub width: i32,
+    pub height: i32,
+    pub camera: *const c_char,
+    pub contacts: c_int,
+    pub samples: i32,
+}
+
+#[repr(C)]
+pub struct graspkit_dataset {
+    _private: [u8; 0],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_dataset_options {
+    pub grasps: i32,
+    pub steps: i64,
+    pub seed: u64,
+    pub validate: c_int,
+    pub validate_seconds: c_double,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct graspkit_dataset_grasp {
+    pub pregrasp: graspkit_pose,
+    pub grasp: graspkit_pose,
+    pub epsilon: c_double,
+    pub volume: c_double,
+    pub force_closure: c_int,
+    pub held: c_int,
+    pub contacts: i32,
 }
 
 #[repr(C)]
@@ -207,6 +306,7 @@ extern "C" {
         first_robot: *mut i32,
     ) -> graspkit_status;
     pub fn graspkit_world_free(world: *mut graspkit_world);
+    pub fn graspkit_world_remove_body(world: *mut graspkit_world, body: i32) -> graspkit_status;
 
     pub fn graspkit_world_body_count(
         world: *const graspkit_world,
@@ -411,6 +511,69 @@ extern "C" {
     ) -> graspkit_status;
     pub fn graspkit_plan_free(plan: *mut graspkit_plan);
 
+    pub fn graspkit_world_step(
+        world: *mut graspkit_world,
+        dt: c_double,
+        report: *mut graspkit_step_report,
+    ) -> graspkit_status;
+    pub fn graspkit_simulation_options_default(
+        options: *mut graspkit_simulation_options,
+    ) -> graspkit_status;
+    pub fn graspkit_world_simulate(
+        world: *mut graspkit_world,
+        options: *const graspkit_simulation_options,
+        result: *mut graspkit_simulation_result,
+    ) -> graspkit_status;
+    pub fn graspkit_validate(
+        world: *const graspkit_world,
+        seconds: c_double,
+        validation: *mut graspkit_validation,
+    ) -> graspkit_status;
+
+    pub fn graspkit_render_options_default(options: *mut graspkit_render_options)
+        -> graspkit_status;
+    pub fn graspkit_world_render(
+        world: *const graspkit_world,
+        options: *const graspkit_render_options,
+        rgb: *mut u8,
+        capacity: usize,
+        png: *const c_char,
+    ) -> graspkit_status;
+    pub fn graspkit_generate_object(
+        folder: *const c_char,
+        seed: u64,
+        index: usize,
+        xml_path: *mut c_char,
+        capacity: usize,
+        length: *mut usize,
+    ) -> graspkit_status;
+
+    pub fn graspkit_dataset_options_default(options: *mut graspkit_dataset_options)
+        -> graspkit_status;
+    pub fn graspkit_dataset_plan(
+        hand: *const c_char,
+        object: *const c_char,
+        load: *const graspkit_load_options,
+        options: *const graspkit_dataset_options,
+        dataset: *mut *mut graspkit_dataset,
+    ) -> graspkit_status;
+    pub fn graspkit_dataset_load(
+        path: *const c_char,
+        dataset: *mut *mut graspkit_dataset,
+    ) -> graspkit_status;
+    pub fn graspkit_dataset_save(
+        dataset: *const graspkit_dataset,
+        path: *const c_char,
+    ) -> graspkit_status;
+    pub fn graspkit_dataset_count(dataset: *const graspkit_dataset, count: *mut usize)
+        -> graspkit_status;
+    pub fn graspkit_dataset_get_grasp(
+        dataset: *const graspkit_dataset,
+        index: usize,
+        grasp: *mut graspkit_dataset_grasp,
+    ) -> graspkit_status;
+    pub fn graspkit_dataset_free(dataset: *mut graspkit_dataset);
+
     pub fn graspkit_run_script(
         path: *const c_char,
         options: *const graspkit_script_options,
@@ -445,13 +608,21 @@ mod tests {
     fn struct_layouts_match_the_header() {
         assert_eq!(size_of::<graspkit_pose>(), 7 * 8);
         assert_eq!(size_of::<graspkit_body_ref>(), 16);
-        assert_eq!(size_of::<graspkit_load_options>(), 24);
+        assert_eq!(size_of::<graspkit_load_options>(), 24 + 7 * 8);
         assert_eq!(size_of::<graspkit_autograsp_result>(), 8);
         assert_eq!(size_of::<graspkit_contact>(), 32 + 6 * 8 + 2 * 8 + 8);
         assert_eq!(size_of::<graspkit_quality>(), 24);
         assert_eq!(size_of::<graspkit_ray>(), 64);
         assert_eq!(size_of::<graspkit_ray_hit>(), 8 + 16 + 56);
-        assert_eq!(size_of::<graspkit_plan_options>(), 48);
+        assert_eq!(size_of::<graspkit_plan_options>(), 48 + 3 * 8);
+        assert_eq!(size_of::<graspkit_step_report>(), 24);
+        assert_eq!(size_of::<graspkit_simulation_options>(), 72);
+        assert_eq!(size_of::<graspkit_simulation_result>(), 16 + 24);
+        assert_eq!(size_of::<graspkit_direction_result>(), 56);
+        assert_eq!(size_of::<graspkit_validation>(), 8 + 6 * 56);
+        assert_eq!(size_of::<graspkit_render_options>(), 24);
+        assert_eq!(size_of::<graspkit_dataset_options>(), 40);
+        assert_eq!(size_of::<graspkit_dataset_grasp>(), 2 * 56 + 32);
         assert_eq!(size_of::<graspkit_planned_grasp>(), 2 * 56 + 3 * 8 + 8);
         assert_eq!(size_of::<graspkit_script_options>(), 48);
     }

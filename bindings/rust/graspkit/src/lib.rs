@@ -23,6 +23,8 @@
 //!
 //! Units are GraspIt!'s: millimetres, radians (mm for prismatic DOFs), grams.
 
+mod dataset;
+mod dynamics;
 mod error;
 mod grasp;
 mod plan;
@@ -32,6 +34,11 @@ mod strings;
 mod views;
 mod world;
 
+pub use dataset::{Dataset, DatasetGrasp, DatasetOptions};
+pub use dynamics::{
+    generate_object, DirectionResult, RenderOptions, Simulation, SimulationOptions, StepReport,
+    Validation,
+};
 pub use error::{Error, Result, Status};
 pub use grasp::{Contact, ContactModel, Grasp, Quality, WrenchSpace};
 pub use plan::{Plan, PlanOptions, PlannedGrasp};

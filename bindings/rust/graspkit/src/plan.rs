@@ -26,18 +26,31 @@ pub struct PlanOptions {
     pub threads: i32,
     /// How many grasps to keep.
     pub top: i32,
+    /// simann's mode, "restarts" or "anneal" (`None`: restarts; other planners have none).
+    pub mode: Option<String>,
+    /// The hand position space: "axis-angle", "complete", "ellipsoid", "approach".
+    pub space: String,
+    /// The posture space: "eigen" or "dof".
+    pub posture: String,
 }
 
 impl Default for PlanOptions {
+    /// graspkit's defaults, as the C ABI (and every other front end) has them.
     fn default() -> PlanOptions {
+        let mut raw = std::mem::MaybeUninit::<sys::graspkit_plan_options>::zeroed();
+        unsafe { sys::graspkit_plan_options_default(raw.as_mut_ptr()) };
+        let raw = unsafe { raw.assume_init() };
         PlanOptions {
-            planner: "simann".to_string(),
-            energy: "contact".to_string(),
-            steps: 40000,
-            seconds: 0.0,
-            seed: 1,
-            threads: 0,
-            top: 20,
+            planner: crate::error::text(raw.planner),
+            energy: crate::error::text(raw.energy),
+            steps: raw.steps,
+            seconds: raw.seconds,
+            seed: raw.seed,
+            threads: raw.threads,
+            top: raw.top,
+            mode: None,
+            space: crate::error::text(raw.space),
+            posture: crate::error::text(raw.posture),
         }
     }
 }
@@ -80,7 +93,13 @@ impl Plan {
     pub fn run(world: &World, robot: i32, object: i32, options: &PlanOptions) -> Result<Plan> {
         let planner = c_string(&options.planner)?;
         let energy = c_string(&options.energy)?;
+        let mode = options.mode.as_deref().map(c_string).transpose()?;
+        let space = c_string(&options.space)?;
+        let posture = c_string(&options.posture)?;
         let raw_options = sys::graspkit_plan_options {
+            mode: mode.as_ref().map_or(ptr::null(), |m| m.as_ptr()),
+            space: space.as_ptr(),
+            posture: posture.as_ptr(),
             planner: planner.as_ptr(),
             energy: energy.as_ptr(),
             steps: options.steps,

@@ -93,6 +93,17 @@ pub struct LoadOptions {
     pub roots: Vec<PathBuf>,
     /// A robot of an unknown type loads as a generic hand instead of failing.
     pub generic_robots: bool,
+    /// URDF: folders holding the packages `package://` paths name (`--package-path`).
+    pub package_paths: Vec<PathBuf>,
+    /// URDF: the link taken as the palm (`--palm`; the root link when `None`).
+    pub palm: Option<String>,
+    /// URDF: every link's material (`--urdf-material`; rubber when `None`).
+    pub urdf_material: Option<String>,
+    /// URDF: the SRDF whose `<disable_collisions>` pairs are never checked (`--srdf`).
+    pub srdf: Option<PathBuf>,
+    /// The way DOF i closes the hand (`--close`): +1 towards its upper limit, -1 its lower,
+    /// 0 as the file or the inferred direction says.
+    pub closing: Vec<i32>,
 }
 
 impl LoadOptions {
@@ -100,7 +111,7 @@ impl LoadOptions {
     pub fn with_root<P: AsRef<Path>>(root: P) -> LoadOptions {
         LoadOptions {
             roots: vec![root.as_ref().to_path_buf()],
-            generic_robots: false,
+            ..LoadOptions::default()
         }
     }
 }
@@ -148,19 +159,54 @@ impl Drop for World {
     }
 }
 
-struct RawLoadOptions {
+pub(crate) struct RawLoadOptions {
     _roots: CStrings,
-    raw: sys::graspkit_load_options,
+    _packages: CStrings,
+    _texts: Vec<Option<std::ffi::CString>>,
+    _closing: Vec<i32>,
+    pub(crate) raw: sys::graspkit_load_options,
 }
 
-fn raw_load_options(options: &LoadOptions) -> Result<RawLoadOptions> {
+fn optional_c(text: Option<&str>) -> Result<Option<std::ffi::CString>> {
+    text.map(crate::strings::c_string).transpose()
+}
+
+fn pointer(text: &Option<std::ffi::CString>) -> *const std::os::raw::c_char {
+    text.as_ref().map_or(ptr::null(), |t| t.as_ptr())
+}
+
+pub(crate) fn raw_load_options(options: &LoadOptions) -> Result<RawLoadOptions> {
     let roots = CStrings::from_paths(&options.roots)?;
+    let packages = CStrings::from_paths(&options.package_paths)?;
+    let srdf = match &options.srdf {
+        Some(path) => Some(c_path(path)?),
+        None => None,
+    };
+    let texts = vec![
+        optional_c(options.palm.as_deref())?,
+        optional_c(options.urdf_material.as_deref())?,
+        srdf,
+    ];
+    let closing = options.closing.clone();
     let raw = sys::graspkit_load_options {
         roots: roots.as_ptr(),
         root_count: roots.len(),
         generic_robots: options.generic_robots as c_int,
+        package_paths: packages.as_ptr(),
+        package_path_count: packages.len(),
+        palm: pointer(&texts[0]),
+        urdf_material: pointer(&texts[1]),
+        srdf: pointer(&texts[2]),
+        closing: closing.as_ptr(),
+        close_count: closing.len(),
     };
-    Ok(RawLoadOptions { _roots: roots, raw })
+    Ok(RawLoadOptions {
+        _roots: roots,
+        _packages: packages,
+        _texts: texts,
+        _closing: closing,
+        raw,
+    })
 }
 
 impl World {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include "graspkit/base/enum_names.hpp"
 
 #include "graspkit/geometry/mesh.hpp"
 #include "graspkit/model/material.hpp"
@@ -56,6 +57,8 @@ struct DynamicState {
 };
 
 enum class BodyKind { Obstacle, Graspable };
+// "obstacle" and "graspable", the kinds every front end prints and accepts.
+std::span<const EnumName<BodyKind>> enumNames(std::type_identity<BodyKind>);
 
 // A body placed in a world: an obstacle (static) or a graspable body (dynamic).
 struct Body {

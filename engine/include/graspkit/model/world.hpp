@@ -63,6 +63,8 @@ class World {
   // The first robot that is a hand: what GraspIt! makes the current hand when a world loads, and
   // "the hand" wherever none is named. nullopt when no robot is a hand (an arm alone).
   std::optional<int> firstHand() const;
+  // The first graspable (dynamic) body: "the object" wherever none is named. nullopt when none.
+  std::optional<int> firstGraspable() const;
 
   const std::vector<Connection>& connections() const { return connections_; }
   const std::optional<Camera>& camera() const { return camera_; }
