@@ -414,12 +414,15 @@ int step(lua_State* L) {
   const auto total = static_cast<std::int64_t>(wanted);
   PlannerCall call(L, bound);
   const auto start = Clock::now();
+  // Progress is what the planner says it did: a planner whose work comes in pieces (simann's
+  // restarts) may do more than a chunk asks.
+  const std::int64_t first = bound.planner->stepsDone();
   std::int64_t done = 0;
   while (done < total && !bound.planner->done()) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const std::int64_t chunk = std::min(total - done, chunkFor(done, elapsed));
     bound.planner->step(chunk);
-    done += chunk;
+    done = std::max(done + 1, bound.planner->stepsDone() - first);
     checkTimeLimit(L);
   }
   lua_pushinteger(L, bound.planner->stepsDone());

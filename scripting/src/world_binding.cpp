@@ -16,6 +16,7 @@
 #include "graspkit/io/graspit/robot_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/collision_filter.hpp"
+#include "graspkit/model/material.hpp"
 #include "graspkit/render/render.hpp"
 #include "lua_api.hpp"
 #include "module.hpp"
@@ -28,12 +29,43 @@ WorldHandle& toWorldHandle(lua_State* L, int arg) {
   return toObject<WorldHandle>(L, arg, kWorldClass, "World");
 }
 
+// The load options of `graspkit run`'s flags, with what the options table at `arg` (may be
+// absent) sets for this one load: {palm = LINK, urdf_material = NAME, close = {[dof] = "+"|"-"},
+// generic_robots = bool}, dof 0-based as --close counts.
+LoadOptions loadOptionsAt(lua_State* L, int arg) {
+  LoadOptions load = scriptContext(L).options.load;
+  const OptionsTable options(L, arg, {"palm", "urdf_material", "close", "generic_robots"});
+  if (options.has("palm")) load.urdfPalm = options.string("palm", "");
+  if (options.has("urdf_material"))
+    load.urdfMaterial = parseNamed<Material>(options.string("urdf_material", ""), "material");
+  load.genericRobotFallback = options.boolean("generic_robots", load.genericRobotFallback);
+  if (options.has("close")) {
+    lua_getfield(L, arg, "close");
+    const int table = lua_gettop(L);
+    if (!lua_istable(L, table)) throw ArgumentError(L, arg, "option 'close' must be a table");
+    lua_pushnil(L);
+    while (lua_next(L, table) != 0) {
+      const bool ok =
+          lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 0 && lua_type(L, -1) == LUA_TSTRING &&
+          (std::string(lua_tostring(L, -1)) == "+" || std::string(lua_tostring(L, -1)) == "-");
+      if (!ok)
+        throw ArgumentError(L, arg, "option 'close' maps 0-based DOF indices to \"+\" or \"-\"");
+      load.closingDirections[static_cast<int>(lua_tointeger(L, -2))] =
+          std::string(lua_tostring(L, -1)) == "+" ? 1 : -1;
+      lua_pop(L, 1);
+    }
+    lua_settop(L, table - 1);
+  }
+  return load;
+}
+
+// graspkit.load_world(file [, {palm, urdf_material, close, generic_robots}])
 int loadWorld(lua_State* L) {
   ScriptContext& context = scriptContext(L);
   const std::filesystem::path file = context.inputPath(toFileName(L, 1));
+  const LoadOptions load = loadOptionsAt(L, 2);
   auto handle = std::make_shared<ScriptWorld>();
-  static_cast<host::WorldSession&>(*handle) =
-      host::WorldSession::load(file, context.options.load, context.cache);
+  static_cast<host::WorldSession&>(*handle) = host::WorldSession::load(file, load, context.cache);
   pushWorld(L, std::move(handle));
   return 1;
 }
@@ -68,7 +100,7 @@ int addRobot(lua_State* L) {
   ScriptContext& context = scriptContext(L);
   const std::filesystem::path file = context.inputPath(toFileName(L, 2));
   const Transform pose = isNone(L, 3) ? Transform::Identity() : toPose(L, 3);
-  const int index = world.addRobot(file, context.options.load, pose);
+  const int index = world.addRobot(file, loadOptionsAt(L, 4), pose);
   pushRobot(L, toWorldHandle(L, 1), index);
   return 1;
 }

@@ -838,3 +838,143 @@ TEST_F(CAbiPlannerMug, WorldsOnTwoThreadsAtOnce) {
   graspkit_robot_get_dofs(b, 0, db.data(), 4);
   EXPECT_EQ(da, db);
 }
+
+// ---- Dynamics, pictures, generated objects and datasets --------------------------------------
+
+// drop.xml's box lands and rests at half its 120 mm height plus 0.1 mm (the file's closed form);
+// the frame callback runs before the first step and every `every` steps.
+TEST(CAbi, SimulateDropsTheBoxWhereTheClosedFormPutsIt) {
+  WorldPtr world;
+  const std::string root = modelsDir().string();
+  const char* roots[] = {root.c_str()};
+  graspkit_load_options load = {};
+  load.roots = roots;
+  load.root_count = 1;
+  ASSERT_EQ(graspkit_world_load((modelsDir() / "worlds/drop.xml").c_str(), &load, &world.w),
+            GRASPKIT_OK)
+      << lastError();
+  graspkit_simulation_options options;
+  ASSERT_EQ(graspkit_simulation_options_default(&options), GRASPKIT_OK);
+  EXPECT_EQ(options.seconds, 1.0);
+  EXPECT_EQ(options.dt, 0.0025);
+  int frames = 0;
+  options.every = 100;
+  options.user = &frames;
+  options.frame = [](const graspkit_world*, void* user) { ++*static_cast<int*>(user); };
+  graspkit_simulation_result result;
+  ASSERT_EQ(graspkit_world_simulate(world, &options, &result), GRASPKIT_OK) << lastError();
+  EXPECT_EQ(result.completed, 1);
+  EXPECT_EQ(result.steps, 400);
+  EXPECT_EQ(frames, 1 + 4);
+  graspkit_pose pose;
+  ASSERT_EQ(graspkit_body_get_pose(world, 1, &pose), GRASPKIT_OK);
+  EXPECT_NEAR(pose.translation[2], 60.1, 0.2);
+  graspkit_step_report step;
+  ASSERT_EQ(graspkit_world_step(world, 0.0, &step), GRASPKIT_OK);
+  EXPECT_NEAR(step.time, 1.0025, 1e-9);
+  EXPECT_EQ(graspkit_world_step(world, 1.0, &step), GRASPKIT_ERROR_INPUT);  // dt > 0.05 s
+  options.every = 0;
+  EXPECT_EQ(graspkit_world_simulate(world, &options, &result), GRASPKIT_ERROR_INPUT);
+  // No hand to validate with.
+  graspkit_validation validation;
+  EXPECT_EQ(graspkit_validate(world, 0.5, &validation), GRASPKIT_ERROR_INPUT);
+  EXPECT_NE(lastError().find("hand"), std::string::npos) << lastError();
+  // Removing the floor leaves the box as body 0.
+  ASSERT_EQ(graspkit_world_remove_body(world, 0), GRASPKIT_OK);
+  int32_t count = 0;
+  graspkit_world_body_count(world, &count);
+  EXPECT_EQ(count, 1);
+  int graspable = 0;
+  graspkit_body_is_graspable(world, 0, &graspable);
+  EXPECT_EQ(graspable, 1);
+  EXPECT_EQ(graspkit_world_remove_body(world, 3), GRASPKIT_ERROR_OUT_OF_RANGE);
+}
+
+TEST(CAbi, RenderFillsTheBufferOrSaysItIsTooSmall) {
+  WorldPtr world;
+  loadOrFail((modelsDir() / "objects/box.xml").string(), world);
+  graspkit_render_options options;
+  ASSERT_EQ(graspkit_render_options_default(&options), GRASPKIT_OK);
+  EXPECT_EQ(options.width, 640);
+  EXPECT_EQ(options.height, 480);
+  options.width = 64;
+  options.height = 48;
+  std::vector<uint8_t> rgb(64 * 48 * 3, 7);
+  EXPECT_EQ(graspkit_world_render(world, &options, rgb.data(), rgb.size() - 1, nullptr),
+            GRASPKIT_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(rgb[0], 7);  // nothing written
+  ASSERT_EQ(graspkit_world_render(world, &options, rgb.data(), rgb.size(), nullptr), GRASPKIT_OK)
+      << lastError();
+  // The background is white (the renderer's default) and the box, in the middle, is not.
+  EXPECT_EQ(rgb[0], 255);
+  const std::size_t centre = (24 * 64 + 32) * 3;
+  EXPECT_LT(int(rgb[centre]) + rgb[centre + 1] + rgb[centre + 2], 3 * 255);
+  options.camera = "sideways";
+  EXPECT_EQ(graspkit_world_render(world, &options, rgb.data(), rgb.size(), nullptr),
+            GRASPKIT_ERROR_INPUT);
+}
+
+TEST(CAbi, LoadOptionsRefuseABadClosingDirection) {
+  const int32_t closing[] = {0, 2};
+  graspkit_load_options load = {};
+  load.closing = closing;
+  load.close_count = 2;
+  WorldPtr world;
+  EXPECT_EQ(graspkit_world_load((modelsDir() / "robots/urdf_gripper/urdf_gripper.urdf").c_str(),
+                                &load, &world.w),
+            GRASPKIT_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("closing[1]"), std::string::npos) << lastError();
+  load.close_count = 0;
+  load.urdf_material = "unobtainium";
+  EXPECT_EQ(graspkit_world_load((modelsDir() / "robots/urdf_gripper/urdf_gripper.urdf").c_str(),
+                                &load, &world.w),
+            GRASPKIT_ERROR_INPUT);
+  EXPECT_NE(lastError().find("unobtainium"), std::string::npos) << lastError();
+}
+
+// A dataset saved and loaded back gives the grasps it was planned with; out-of-range indices
+// and NULLs are refused.
+TEST(CAbi, DatasetsRoundTrip) {
+  const fs::path folder = graspkit::test::scratchDir();
+  char object[4096];
+  size_t length = 0;
+  ASSERT_EQ(graspkit_generate_object(folder.c_str(), 1, 0, object, sizeof object, &length),
+            GRASPKIT_OK)
+      << lastError();
+  EXPECT_TRUE(fs::exists(object));
+  EXPECT_EQ(std::string(object).size(), length);
+  graspkit_dataset_options options;
+  ASSERT_EQ(graspkit_dataset_options_default(&options), GRASPKIT_OK);
+  EXPECT_EQ(options.grasps, 20);
+  EXPECT_EQ(options.steps, 40000);
+  options.grasps = 2;
+  options.steps = 600;
+  graspkit_dataset* planned = nullptr;
+  const std::string hand = (modelsDir() / "robots/parallel_jaw/parallel_jaw.xml").string();
+  ASSERT_EQ(graspkit_dataset_plan(hand.c_str(), object, nullptr, &options, &planned), GRASPKIT_OK)
+      << lastError();
+  const std::string file = (folder / "d.h5").string();
+  ASSERT_EQ(graspkit_dataset_save(planned, file.c_str()), GRASPKIT_OK) << lastError();
+  graspkit_dataset* loaded = nullptr;
+  ASSERT_EQ(graspkit_dataset_load(file.c_str(), &loaded), GRASPKIT_OK) << lastError();
+  size_t a = 0, b = 0;
+  graspkit_dataset_count(planned, &a);
+  graspkit_dataset_count(loaded, &b);
+  ASSERT_EQ(a, b);
+  ASSERT_GT(a, 0u);
+  for (size_t i = 0; i < a; ++i) {
+    graspkit_dataset_grasp x, y;
+    ASSERT_EQ(graspkit_dataset_get_grasp(planned, i, &x), GRASPKIT_OK);
+    ASSERT_EQ(graspkit_dataset_get_grasp(loaded, i, &y), GRASPKIT_OK);
+    EXPECT_EQ(x.epsilon, y.epsilon);
+    EXPECT_EQ(x.volume, y.volume);
+    EXPECT_EQ(x.contacts, y.contacts);
+    EXPECT_EQ(x.held, -1);  // not validated
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(x.grasp.translation[k], y.grasp.translation[k]);
+  }
+  graspkit_dataset_grasp g;
+  EXPECT_EQ(graspkit_dataset_get_grasp(loaded, a, &g), GRASPKIT_ERROR_OUT_OF_RANGE);
+  EXPECT_EQ(graspkit_dataset_load((folder / "missing.h5").c_str(), &loaded), GRASPKIT_ERROR_INPUT);
+  graspkit_dataset_free(planned);
+  graspkit_dataset_free(loaded);
+}

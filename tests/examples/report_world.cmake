@@ -7,7 +7,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/example_support.cmake)
 
 run_example(out run report_world.lua)
 expect_output("${out}" "floor: obstacle, wood" "the floor")
-expect_output("${out}" "mug: object, glass, 350\\.0 g" "the mug")
+expect_output("${out}" "mug: graspable, glass, 350\\.0 g" "the mug")
 expect_output("${out}" "mug: [^\n]*\n +pose \\(0\\.00, 0\\.00, 50\\.00\\) mm, q = \\(1\\.0000, 0\\.0000, 0\\.0000, 0\\.0000\\)"
               "the mug's pose")
 expect_output("${out}" "bh8: type Hand [^\n]*a hand, 3 chains\n +pose \\(0\\.00, 0\\.00, 190\\.00\\) mm, q = \\(0\\.0000, 1\\.0000, 0\\.0000, 0\\.0000\\)"

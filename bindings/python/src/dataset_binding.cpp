@@ -143,7 +143,7 @@ void bindDatasets(py::module_& m) {
         const host::SavedObject saved = host::saveGeneratedObject(folder, options, index);
         py::dict d;
         d["name"] = saved.name;
-        d["file"] = saved.file;
+        d["file"] = saved.file.string();
         d["kind"] = std::string(nameOf(saved.kind));
         d["mass"] = saved.mass;
         d["shape"] = saved.shape;

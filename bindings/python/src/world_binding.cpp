@@ -343,7 +343,7 @@ void bindWorldClass(py::module_& m) {
       [](const std::filesystem::path& file, std::vector<std::filesystem::path> roots,
          bool generic_robots, std::vector<std::filesystem::path> package_path, std::string palm,
          std::string urdf_material, std::map<std::string, std::string> link_materials,
-         std::map<int, std::string> close, std::filesystem::path srdf) {
+         std::map<int, std::string> close, std::optional<std::filesystem::path> srdf) {
         const LoadArguments load{std::move(roots),         generic_robots,
                                  std::move(package_path),  std::move(palm),
                                  std::move(urdf_material), std::move(link_materials),
@@ -360,7 +360,7 @@ void bindWorldClass(py::module_& m) {
       py::arg("package_path") = std::vector<std::filesystem::path>{}, py::arg("palm") = "",
       py::arg("urdf_material") = "",
       py::arg("link_materials") = std::map<std::string, std::string>{},
-      py::arg("close") = std::map<int, std::string>{}, py::arg("srdf") = std::filesystem::path{},
+      py::arg("close") = std::map<int, std::string>{}, py::arg("srdf") = py::none(),
       "Loads a GraspIt! world, robot or body file, a URDF or MJCF hand, or a bare mesh into a new "
       "World. A world's <filename>s are looked up below `roots` first, then $GRASPKIT_ROOT, "
       "$GRASPIT, then the file's folder and its parents. For URDF hands, as `graspkit`'s flags: "

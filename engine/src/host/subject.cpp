@@ -15,8 +15,9 @@ namespace graspkit::host {
 
 int defaultHand(const World& world) {
   if (const auto hand = world.firstHand()) return *hand;
-  throw Error(world.robotCount() == 0 ? "the world has no robot to grasp with"
-                                      : "no robot of the world is a hand; name the robot to use");
+  throw Error(world.robotCount() == 0
+                  ? "the world has no hand (it has no robot)"
+                  : "the world has no hand: none of its robots is one; name the robot to use");
 }
 
 BodyRef defaultObject(const World& world) {
@@ -35,9 +36,9 @@ int handNamed(const World& world, std::string_view robot) {
   int index = -1;
   const auto [end, ec] = std::from_chars(robot.data(), robot.data() + robot.size(), index);
   if (ec != std::errc{} || end != robot.data() + robot.size())
-    throw Error(fmt::format("robot '{}': no robot of that name; {}", robot, known));
+    throw Error(fmt::format("'{}': no robot of that name; {}", robot, known));
   if (index < 0 || index >= world.robotCount())
-    throw Error(fmt::format("robot {}: no robot with that index; {}", robot, known));
+    throw Error(fmt::format("{}: no robot with that index; {}", robot, known));
   return index;
 }
 
@@ -47,7 +48,7 @@ BodyRef objectNamed(const World& world, std::string_view object) {
     return BodyRef::body(static_cast<int>(found - world.bodies().data()));
   std::vector<std::string> names;
   for (const Body& b : world.bodies()) names.push_back(b.name);
-  throw Error(fmt::format("no body '{}' in the world (bodies: {})", object,
+  throw Error(fmt::format("'{}': no body of that name in the world (bodies: {})", object,
                           names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
 }
 

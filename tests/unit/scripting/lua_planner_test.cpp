@@ -95,7 +95,8 @@ end
 
 TEST_F(LuaPlanner, LuaEnergyBringsThePalmToTheTarget) {
   run(std::string(kPalmTarget) + R"(
-    local p = graspkit.planner("simann", {world = world, energy = energy, seed = 4, top = 5})
+    local p = graspkit.planner("simann", {world = world, energy = energy, seed = 4, top = 5,
+                                          mode = "anneal"})
     steps = p:run{steps = 1500}
     local best = p:best()
     count = #best
@@ -123,7 +124,8 @@ TEST_F(LuaPlanner, LuaEnergyBringsThePalmToTheTarget) {
 TEST_F(LuaPlanner, FixedSeedGivesTheSameListTwiceAndAnotherSeedDoesNot) {
   run(std::string(kPalmTarget) + R"(
     local function plan(seed)
-      local p = graspkit.planner("simann", {world = world, energy = energy, seed = seed})
+      local p = graspkit.planner("simann", {world = world, energy = energy, seed = seed,
+                                            mode = "anneal"})
       p:step(400)
       p:step(400)  -- chunking must not matter
       return p:best()
@@ -152,7 +154,8 @@ TEST_F(LuaPlanner, RegisteredEnergyMatchesTheCppPlanner) {
   run(R"(
     local p = graspkit.planner("simann", {world = world, energy = "CONTACT_ENERGY", seed = 11,
                                           top = 6, robot = "Barrett", object = "mug",
-                                          mode = "anneal", set = {threshold = 0.2}})
+                                          mode = "anneal", threads = 1,
+                                          set = {threshold = 0.2}})
     p:run{steps = 1200}
     energies = {}
     for i, g in ipairs(p:best()) do energies[i] = g.energy end
@@ -184,7 +187,7 @@ TEST_F(LuaPlanner, RegisteredEnergyMatchesTheCppPlanner) {
 // analysis), gives the same closed DOFs, epsilon, volume, contact count and force closure.
 TEST_F(LuaPlanner, FinishedGraspsMatchTheRobotBindingsAutograsp) {
   run(R"(
-    local p = graspkit.planner("simann", {world = world, seed = 2, top = 3})
+    local p = graspkit.planner("simann", {world = world, seed = 2, top = 3, mode = "anneal"})
     p:run{steps = 800}
     local grasps = p:best{autograsp = true}
     count, worst_dof, worst_quality, mismatches = #grasps, 0, 0, 0
@@ -223,7 +226,8 @@ TEST_F(LuaPlanner, StatesOptionSetsTheStart) {
     local moved = {pose = graspkit.pose({t[1] + 40, t[2], t[3]}, hand:pose().quaternion),
                    dofs = hand:dofs()}
     local function first(states)
-      local p = graspkit.planner("simann", {world = world, seed = 5, states = states})
+      local p = graspkit.planner("simann", {world = world, seed = 5, states = states,
+                                            mode = "anneal"})
       p:step(300)
       return p:best()[1].energy
     end
