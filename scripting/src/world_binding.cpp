@@ -79,7 +79,7 @@ int addRobot(lua_State* L) {
 int save(lua_State* L) {
   ScriptWorld& world = *toWorldHandle(L, 1);
   const std::filesystem::path file = scriptContext(L).outputPath(toFileName(L, 2));
-  saveWorldFile(world.world, file, SaveOptions{.root = file.parent_path()});
+  saveWorldFile(world.world, file);
   world.file = file;
   return 0;
 }

@@ -234,7 +234,7 @@ void bindWorldClass(py::module_& m) {
       .def(
           "save",
           [](WorldHandle& w, const std::filesystem::path& file) {
-            saveWorldFile(w.world, file, SaveOptions{.root = file.parent_path()});
+            saveWorldFile(w.world, file);
             w.file = std::filesystem::absolute(file);
           },
           py::arg("file"),
