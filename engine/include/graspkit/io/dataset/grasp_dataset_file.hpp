@@ -21,7 +21,7 @@ struct DatasetDirection {
   double slip = 0.0;     // mm: the largest displacement from the palm in the direction's run
   double turn = 0.0;     // rad: the largest rotation relative to the palm
   double seconds = 0.0;  // simulated: less than asked when the run ended at rest or let go
-  bool failed = false;   // the simulation itself failed (its message is in the run's log)
+  bool failed = false;   // the simulation itself failed (its message is not kept)
 };
 
 struct DatasetGrasp {
