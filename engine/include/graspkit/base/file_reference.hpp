@@ -20,8 +20,8 @@ namespace graspkit {
 std::string fileReference(const std::filesystem::path& target, const std::filesystem::path& folder);
 
 // Whether `name` is explicitly relative to the file that holds it: its first component is `.`
-// or `..` (`./objects/mug.xml`, `../models/mug.xml`). World files resolve such a name against
-// their own folder only, never against --root (io/graspit/world_file.hpp).
+// or `..` (`./objects/mug.xml`, `../models/mug.xml`). World files look such a name up beside
+// themselves first, before --root (io/graspit/world_file.hpp).
 bool isFileRelative(std::string_view name);
 
 }  // namespace graspkit

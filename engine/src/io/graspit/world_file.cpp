@@ -56,24 +56,20 @@ class WorldReader {
   }
 
  private:
-  // The search rule (world_file.hpp, loadWorldFile): an absolute name is itself; a name starting
-  // with `./` or
-  // `../` (what graspkit writes) is relative to this world file's folder and nothing else; any
-  // other name is looked up under each of roots_ in turn (--root, $GRASPKIT_ROOT, $GRASPIT, then
-  // this file's folder and each of its parents: GraspIt!'s names are relative to its root).
+  // The search rule (world_file.hpp, loadWorldFile): an absolute name is itself; a name
+  // starting with `./` or `../` (what graspkit writes) is first looked for beside this world
+  // file; every other name, and such a name not found there, is looked up under each of roots_
+  // in turn (--root, $GRASPKIT_ROOT, $GRASPIT, then this file's folder and each of its parents:
+  // GraspIt!'s names are relative to its root, and `../shared/...` names relative to a root are
+  // in use).
   fs::path resolve(const XMLElement& element) {
     const std::string name = xml::text(element);
     if (name.empty()) throw Error(xml::at(file_, element), "empty file name");
     // One place to look: the read gives the reason it fails (refused, missing, a loop).
     if (fs::path(name).is_absolute()) return name;
     if (isFileRelative(name)) {
-      const fs::path folder = fs::absolute(file_).parent_path();
-      const fs::path path = folder / name;
-      if (inputFileFound(path) || inputFileRefused(path)) return path;
-      throw Error(xml::at(file_, element),
-                  fmt::format("'{}' not found: a name starting with ./ or ../ is relative to the "
-                              "world file's folder, {}",
-                              name, folder.string()));
+      const fs::path path = fs::absolute(file_).parent_path() / name;
+      if (inputFileFound(path)) return path;
     }
     std::optional<fs::path> refused;
     for (const fs::path& root : roots_) {
@@ -214,8 +210,8 @@ std::string signedNumber(double value) {
 //   when the saved world's folder or one of its parents holds that very file (a world saved
 //   back into its own tree keeps GraspIt!'s names);
 // - else the model's path relative to the saved world's folder, starting with `./` or `../`
-//   (relative to the world file only, never looked up under --root), or its absolute path when
-//   the two share no folder below the file system's root.
+//   (looked for beside the world file before any root), or its absolute path when the two share
+//   no folder below the file system's root.
 std::string modelName(const std::string& written, const fs::path& model_file,
                       const fs::path& world_file) {
   if (model_file.empty()) return written;  // nothing to say better (a body made in memory)

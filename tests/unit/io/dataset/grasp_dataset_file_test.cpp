@@ -79,10 +79,12 @@ TEST(GraspDatasetFile, LoadsBackWhatWasSaved) {
   const GraspDataset loaded = loadGraspDataset(file);
   // Files come back absolute, naming what the saved (working-folder-relative) names named.
   EXPECT_TRUE(fs::path(loaded.objectFile).is_absolute()) << loaded.objectFile;
-  EXPECT_EQ(fs::weakly_canonical(loaded.objectFile), fs::weakly_canonical(saved.objectFile));
+  EXPECT_EQ(fs::weakly_canonical(loaded.objectFile),
+            fs::weakly_canonical(fs::absolute(saved.objectFile)));
   EXPECT_EQ(loaded.objectName, saved.objectName);
   EXPECT_EQ(loaded.objectMass, saved.objectMass);
-  EXPECT_EQ(fs::weakly_canonical(loaded.handFile), fs::weakly_canonical(saved.handFile));
+  EXPECT_EQ(fs::weakly_canonical(loaded.handFile),
+            fs::weakly_canonical(fs::absolute(saved.handFile)));
   EXPECT_EQ(loaded.handName, saved.handName);
   EXPECT_EQ(loaded.engineVersion, saved.engineVersion);
   EXPECT_EQ(loaded.seed, saved.seed);

@@ -12,12 +12,13 @@ namespace graspkit {
 
 // How a <filename> (or <mountFilename>) is found:
 // - an absolute name is that file;
-// - a name starting with `./` or `../` (what saveWorldFile writes) is relative to the world
-//   file's own folder, and nothing else;
-// - any other name (GraspIt!'s `models/objects/mug.xml`, relative to its root) is looked up
-//   under LoadOptions::roots (--root), then $GRASPKIT_ROOT, then $GRASPIT, then the world file's
-//   folder and each of its parents, the first holding it winning (searchRoots, each folder
-//   once). The "not found" error lists the folders searched.
+// - a name starting with `./` or `../` (what saveWorldFile writes) is first looked for relative
+//   to the world file's own folder, so no --root can shadow it;
+// - any other name (GraspIt!'s `models/objects/mug.xml`, relative to its root), and a `./` or
+//   `../` name not found beside the world file (`../shared/hands/...` relative to a root), is
+//   looked up under LoadOptions::roots (--root), then $GRASPKIT_ROOT, then $GRASPIT, then the
+//   world file's folder and each of its parents, the first holding it winning (searchRoots, each
+//   folder once). The "not found" error lists the folders searched.
 World loadWorldFile(const std::filesystem::path& file, const LoadOptions& options = {},
                     ModelCache* cache = nullptr);
 
