@@ -6,8 +6,10 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -58,6 +60,33 @@ int usageError(const CLI::App& app, const CLI::ParseError& e) {
   std::cerr << "graspkit: error: " << e.what() << "\n"
             << "Run 'graspkit --help' or 'graspkit COMMAND --help' for the usage.\n";
   return kUsageStatus;
+}
+
+// The first word of the command line that is not an option (nor the value of --no-warn), when it
+// names no command: `graspkit serve` is an unknown command, not a missing one.
+std::optional<std::string> unknownCommand(const CLI::App& app, int argc, char** argv) {
+  if (!app.get_subcommands().empty()) return std::nullopt;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") return std::nullopt;
+    if (arg == "--no-warn") {
+      ++i;
+      continue;
+    }
+    if (arg.starts_with("-")) continue;
+    for (const CLI::App* command : app.get_subcommands({}))
+      if (command->check_name(std::string(arg))) return std::nullopt;
+    return std::string(arg);
+  }
+  return std::nullopt;
+}
+
+// The commands, as `graspkit --help` lists them: "info, grasp, plan, ...".
+std::string commandNames(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* command : app.get_subcommands({}))
+    names.append(names.empty() ? "" : ", ").append(command->get_name());
+  return names;
 }
 
 // Each subcommand's options, filled by the parser.
@@ -161,6 +190,15 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != 0) {
+      if (const auto unknown = unknownCommand(app, argc, argv)) {
+        std::cerr << "graspkit: error: unknown command '" << graspkit::cli::terminalSafe(*unknown)
+                  << "'\n"
+                  << "The commands are: " << commandNames(app) << ".\n"
+                  << "Run 'graspkit --help' or 'graspkit COMMAND --help' for the usage.\n";
+        return kUsageStatus;
+      }
+    }
     return usageError(app, e);
   }
   // Errors, warnings and traces go to stderr, so --json output on stdout stays parseable.

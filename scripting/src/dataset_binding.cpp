@@ -38,6 +38,24 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
     lua_pushboolean(L, g.held == 1);
     lua_setfield(L, -2, "held");
   }
+  if (!g.validation.empty()) {  // nil: not validated, or a file from before schema 2
+    lua_createtable(L, static_cast<int>(g.validation.size()), 0);
+    for (std::size_t k = 0; k < g.validation.size(); ++k) {
+      const DatasetDirection& d = g.validation[k];
+      lua_createtable(L, 0, 6);
+      pushVector3(L, d.direction);
+      lua_setfield(L, -2, "direction");
+      lua_pushboolean(L, d.held);
+      lua_setfield(L, -2, "held");
+      setNumber(L, "slip", d.slip);
+      setNumber(L, "turn", d.turn);
+      setNumber(L, "seconds", d.seconds);
+      lua_pushboolean(L, d.failed);
+      lua_setfield(L, -2, "failed");
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, "validation");
+  }
   lua_createtable(L, static_cast<int>(g.breakaway.size()), 0);
   for (std::size_t j = 0; j < g.breakaway.size(); ++j) {
     lua_createtable(L, 0, 2);
@@ -61,7 +79,8 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
 
 // graspkit.load_dataset(file) -> {object = {file, name, mass}, hand = {file, name},
 //   engine_version, seed, grasps = {{pose, pregrasp, open_dofs, closed_dofs, epsilon, volume,
-//   force_closure, held, breakaway = {{engaged, value}, ...}, contacts = {{point, normal}, ...}},
+//   force_closure, held, validation = {{direction, held, slip, turn, seconds, failed}, ...},
+//   breakaway = {{engaged, value}, ...}, contacts = {{point, normal}, ...}},
 //   ...}}
 int loadDataset(lua_State* L) {
   const std::filesystem::path file = scriptContext(L).inputPath(toFileName(L, 1));

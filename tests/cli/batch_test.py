@@ -16,7 +16,10 @@ Checks, each against an independent truth (a single uninterrupted run, the body 
     retried once and then left alone;
   - an object that runs out of time is killed and recorded as failed;
   - h5py reads the files: transforms are rigid, the force-closure count is the manifest's, the
-    object's mass is its Body XML's.
+    object's mass is its Body XML's, force closure is epsilon >= 1e-6, the object and hand files
+    are named from the dataset's folder;
+  - a validated batch keeps each direction's result, consistent with the grasp's label and with
+    validation's limits.
 """
 
 import json
@@ -258,6 +261,55 @@ for name, entry in entries.items():
             fail(f"{name}: mass {f['object/mass'][()]} in the file, {mass} in the body XML")
         if f.attrs["units"] != "mm" or f["hand/name"][()].decode() != "parallel_jaw":
             fail(f"{name}: units {f.attrs['units']}, hand {f['hand/name'][()]}")
+        # Force closure is epsilon >= 1e-6 (docs/dataset.md), never a rounding's sign.
+        epsilon = f["grasps/qualities/epsilon"][()]
+        flags = f["grasps/qualities/force_closure"][()]
+        if [int(x) for x in flags] != [int(e >= 1e-6) for e in epsilon]:
+            fail(f"{name}: force_closure {list(flags)} for epsilons {list(epsilon)}")
+        # The files are named relative to the dataset's folder (or absolutely): they are found
+        # from wherever the dataset is read.
+        folder = single / "grasps"
+        for key, expected in (("object/file", objects / f"{name}.xml"), ("hand/file", HAND)):
+            named = folder / f[key][()].decode()
+            if not named.exists() or not named.samefile(expected):
+                fail(f"{name}: {key} is {f[key][()].decode()}, which is not {expected} from {folder}")
+        if f["grasps/validation/held"][()].tolist() != [[-1] * 6] * len(epsilon):
+            fail(f"{name}: not validated, yet grasps/validation/held is {f['grasps/validation/held'][()]}")
+
+# A validated batch keeps each direction's result: held in all six exactly when the grasp is
+# held, and a direction held exactly when the object stayed within validation's limits (5 mm of
+# slip, 15 degrees of turn) and the simulation did not fail.
+validated = WORK / "validated"
+(WORK / "two.txt").write_text("objects/object_0000_box.xml\nobjects/object_0001_cylinder.xml\n")
+run = subprocess.run([GRASPKIT, "-q", "batch", "--hand", str(HAND), "--objects",
+                      str(WORK / "two.txt"), "--out", str(validated), "--grasps", "2", "--steps",
+                      "1500", "--validate", "--validate-seconds", "0.25"],
+                     capture_output=True, text=True)
+if run.returncode != 0:
+    fail(f"the validated batch failed ({run.returncode}): {run.stdout}{run.stderr}")
+axes = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]
+for name in ("object_0000_box", "object_0001_cylinder"):
+    with h5py.File(validated / "grasps" / f"{name}.h5", "r") as f:
+        held = f["grasps/qualities/held"][()]
+        directions = f["grasps/validation/held"][()]
+        slip = f["grasps/validation/slip"][()]
+        turn = f["grasps/validation/turn"][()]
+        seconds = f["grasps/validation/seconds"][()]
+        failed = f["grasps/validation/failed"][()]
+        if f["grasps/validation/directions"][()].tolist() != axes:
+            fail(f"{name}: directions {f['grasps/validation/directions'][()]}")
+        if directions.shape != (len(held), 6) or len(held) == 0:
+            fail(f"{name}: validation of shape {directions.shape} for {len(held)} grasps")
+        for i, label in enumerate(held):
+            if int(label) != int(all(d == 1 for d in directions[i])):
+                fail(f"{name} grasp {i}: held {label}, directions {directions[i]}")
+            for k in range(6):
+                within = slip[i][k] <= 5.0 and turn[i][k] <= 15.0 * 3.14159265358979 / 180.0
+                if directions[i][k] not in (0, 1) or bool(directions[i][k]) != (within and not failed[i][k]):
+                    fail(f"{name} grasp {i} direction {k}: held {directions[i][k]}, slip "
+                         f"{slip[i][k]} mm, turn {turn[i][k]} rad, failed {failed[i][k]}")
+                if not failed[i][k] and not 0 < seconds[i][k] <= 0.25 + 1e-9:
+                    fail(f"{name} grasp {i} direction {k}: ran {seconds[i][k]} s of 0.25")
 # graspkit.load_dataset in Lua against h5py, on one file.
 name = "object_0001_cylinder"
 script = WORK / "read_dataset.lua"

@@ -98,12 +98,18 @@ function(check_reload saved)
   math(EXPR last "${files} - 1")
   foreach(i RANGE ${last})
     string(JSON file GET "${saved}" world_files ${i})
+    # Named relative to the plan's folder (both plans are written in ${work}).
+    if(IS_ABSOLUTE "${file}")
+      message(FATAL_ERROR "world file ${file} is not named relative to the plan")
+    endif()
+    set(file ${work}/${file})
     if(NOT EXISTS ${file})
       message(FATAL_ERROR "world file ${file} was not written")
     endif()
     string(JSON planned GET "${saved}" grasps ${i} epsilon)
-    # Saved worlds name GraspIt!'s models relative to its root, as GraspIt!'s own do.
-    execute_process(COMMAND ${GRASPKIT} -q grasp ${file} --root ${data} --json
+    # Saved worlds name GraspIt!'s models so that they load without its root.
+    execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=GRASPKIT_ROOT --unset=GRASPIT
+                            ${GRASPKIT} -q grasp ${file} --json
                     OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
     if(NOT rc EQUAL 0)
       message(FATAL_ERROR "the saved world ${file} does not load (${rc}): ${err}")

@@ -80,8 +80,9 @@ TEST(LegacyConvert, MeshBodyXmlLoadsToTheComputedMassProperties) {
   options.material = Material::Glass;
   options.massGrams = 250;
   options.scale = 1.5;
-  const std::string xml = bodyXmlForMesh(folder / "mug.iv", options);
-  EXPECT_EQ(xml, bodyXmlForMesh(folder / "mug.iv", options));  // the same bytes every time
+  const std::string xml = bodyXmlForMesh(folder / "mug.iv", folder / "mug.xml", options);
+  EXPECT_EQ(xml, bodyXmlForMesh(folder / "mug.iv", folder / "mug.xml",
+                                options));  // the same bytes every time
   writeText(folder / "mug.xml", xml);
   const auto converted = loadBodyFile(folder / "mug.xml");
   writeText(folder / "plain.xml",

@@ -30,7 +30,7 @@ std::string lowerExtension(const fs::path& file) {
   return ext;
 }
 
-std::string converted(const ConvertOptions& options) {
+std::string converted(const ConvertOptions& options, const fs::path& target) {
   const std::string ext = lowerExtension(options.input);
   if (ext == ".egr") return eigengraspXmlFromEgr(options.input);
   if (ext == ".vgr") return virtualContactXmlFromVgr(options.input);
@@ -43,7 +43,7 @@ std::string converted(const ConvertOptions& options) {
     body.material = *material;
     body.massGrams = options.mass;
     body.scale = options.scale;
-    return bodyXmlForMesh(options.input, body);
+    return bodyXmlForMesh(options.input, target, body);
   }
   throw Error(SourceLocation{options.input.string()},
               "convert reads .egr, .vgr and mesh files (.iv, .wrl, .off, .ply, .stl, .obj); the "
@@ -91,7 +91,7 @@ int runConvert(const ConvertOptions& options, bool quiet, std::ostream& out) {
   std::error_code ec;
   if (fs::equivalent(target, options.input, ec))
     throw Error(SourceLocation{target.string()}, "the output would replace the input");
-  const std::string text = converted(options);
+  const std::string text = converted(options, target);
   if (fs::exists(target, ec) && !options.force && readInputFile(target) != text) {
     throw Error(SourceLocation{target.string()},
                 "the file exists and differs from the conversion; --force replaces it");

@@ -12,6 +12,7 @@
 
 #include "commands/plan_command.hpp"
 #include "graspkit/base/error.hpp"
+#include "graspkit/base/file_reference.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/base/version.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
@@ -31,8 +32,10 @@ namespace {
 
 using nlohmann::json;
 
-// The layout of the plan JSON; raised whenever a field changes meaning or goes away.
-constexpr int kPlanSchemaVersion = 2;
+// The layout of the plan JSON; raised whenever a field changes meaning or goes away. 3: the
+// file names (world, object_file, robot_file, world_files) are relative to the plan file's folder
+// (or absolute), not to the folder plan ran in.
+constexpr int kPlanSchemaVersion = 3;
 
 std::map<std::string, std::string> plannerOptions(const PlanOptions& options) {
   std::map<std::string, std::string> result;
@@ -164,7 +167,7 @@ void saveOut(const PlanningRequest& request, const std::vector<PlannedGrasp>& gr
       const auto file = worldFileFor(out, i + 1);
       saveWorldFile(graspWorld(request, grasps[i]), file);
       written.push_back(file);
-      files.push_back(file.string());
+      files.push_back(fileReference(file, out.parent_path()));
     }
     result["world_files"] = files;
     writeFileAtomically(out, result.dump(2) + "\n");
@@ -318,14 +321,20 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
 
   const Body& object = world->bodies()[static_cast<std::size_t>(request.object.index)];
   const WorldRobot& hand = world->worldRobot(request.robot);
+  // Files named as the plan file reads them from any folder: relative to its folder, or
+  // absolute (base/file_reference.hpp); printed without --out, absolute.
+  auto named = [&](const std::filesystem::path& file) {
+    return options.out.empty() ? std::filesystem::absolute(file).lexically_normal().string()
+                               : fileReference(file, options.out.parent_path());
+  };
   json result = {{"schema_version", kPlanSchemaVersion},
                  {"engine_version", engineVersion()},
-                 {"world", options.world.string()},
+                 {"world", named(options.world)},
                  {"object", object.name},
-                 {"object_file", object.model->file.string()},
+                 {"object_file", named(object.model->file)},
                  {"object_pose", poseJson(object.pose)},
                  {"robot", hand.robot.name()},
-                 {"robot_file", hand.robot.model().file.string()},
+                 {"robot_file", named(hand.robot.model().file)},
                  {"virtual_contacts", {{"count", contactCount}, {"derived", derived}}},
                  {"planner", options.planner},
                  {"mode", request.options.count("mode") ? request.options.at("mode") : ""},

@@ -82,18 +82,25 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   int first = 0, last = count;
   if (source.grasp > 0) first = source.grasp - 1, last = source.grasp;
   if (source.grasp == 0 && source.top > 0) last = std::min(count, source.top);
-  // The worlds plan --out wrote name their models as the planned world did (relative to its
-  // root), so that world's folder and its parents are searched after --root.
+  // The plan's file names: since schema 3 relative to the plan file's folder (or absolute);
+  // before, as plan was run (the working folder's, else the plan's folder).
   const json& worldName = member(plan, "world", file);
   if (!worldName.is_string())
     throw Error(SourceLocation{file.string(), 0, "world"}, "not a file name");
+  const json* version = plan.contains("schema_version") ? &plan["schema_version"] : nullptr;
+  const int schema = version && version->is_number_integer() ? version->get<int>() : 0;
   std::filesystem::path planned = worldName.get<std::string>();
-  if (!std::filesystem::exists(planned)) planned = file.parent_path() / planned;
+  if (schema >= 3 || !std::filesystem::exists(planned)) planned = file.parent_path() / planned;
   LoadOptions load = source.load.options();
-  for (auto folder = std::filesystem::absolute(planned).parent_path();;
-       folder = folder.parent_path()) {
-    load.roots.push_back(folder);
-    if (folder == folder.parent_path()) break;
+  // Before schema 3 the worlds plan --out wrote named their models as the planned world did
+  // (relative to its root), so that world's folder and its parents are searched after --root.
+  // Since, they name them so that they load from anywhere (io/graspit/world_file.hpp).
+  if (schema < 3) {
+    for (auto folder = std::filesystem::absolute(planned).parent_path();;
+         folder = folder.parent_path()) {
+      load.roots.push_back(folder);
+      if (folder == folder.parent_path()) break;
+    }
   }
   const bool hasWorlds = plan.contains("world_files") && plan["world_files"].is_array() &&
                          static_cast<int>(plan["world_files"].size()) == count;

@@ -133,7 +133,9 @@ GRASPKIT_C_API graspkit_status graspkit_world_load(const char* path,
 /* A copy sharing the meshes: cheap. */
 GRASPKIT_C_API graspkit_status graspkit_world_clone(const graspkit_world* world,
                                                     graspkit_world** clone);
-/* Saves as GraspIt! writes world files, atomically: a failed save leaves no partial file. */
+/* Saves as GraspIt! writes world files, atomically: a failed save leaves no partial file. Model
+ * files are named so that the saved world loads from any working folder (relative to its folder,
+ * or absolute). */
 GRASPKIT_C_API graspkit_status graspkit_world_save(const graspkit_world* world, const char* path);
 /* Adds the bodies and robots of a Body, Robot or World file; `first_body` and `first_robot`
  * (either may be NULL) get the index of the first one added (the count before the call). */

@@ -190,6 +190,7 @@ class DatasetGrasp:
     volume: float
     force_closure: bool
     held: bool | None
+    validation: list[dict[str, Any]]
     contact_points: Matrix
     contact_normals: Matrix
 

@@ -2,6 +2,8 @@
 // batch` writes them (docs/dataset.md), one object's planned from Python, and the procedural
 // objects `graspkit objects` generates.
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "graspkit/host/dataset_task.hpp"
@@ -42,6 +44,24 @@ void bindDatasetGrasp(py::module_& m) {
             return py::bool_(g.held == 1);
           },
           "True or False once validated; None when the dataset was not validated.")
+      .def_property_readonly(
+          "validation",
+          [](const DatasetGrasp& g) {
+            py::list directions;
+            for (const DatasetDirection& d : g.validation) {
+              py::dict entry;
+              entry["direction"] = toArray(d.direction);
+              entry["held"] = d.held;
+              entry["slip_mm"] = d.slip;
+              entry["turn_deg"] = d.turn * 180.0 / M_PI;
+              entry["seconds"] = d.seconds;
+              entry["failed"] = d.failed;
+              directions.append(entry);
+            }
+            return directions;
+          },
+          "The validation's 6 directions (+x, -x, +y, -y, +z, -z; object frame) as "
+          "graspkit.validate gives them; empty when not validated.")
       .def_property_readonly("contact_points",
                              [](const DatasetGrasp& g) { return points(g.contactPoints); })
       .def_property_readonly("contact_normals",

@@ -1,5 +1,7 @@
 #include "graspkit/dataset/dataset_planning.hpp"
 
+#include <optional>
+
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/version.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
@@ -30,7 +32,7 @@ std::shared_ptr<World> handOverObject(const DatasetRequest& request) {
   return world;
 }
 
-DatasetGrasp datasetGrasp(const PlannedGrasp& g, int held) {
+DatasetGrasp datasetGrasp(const PlannedGrasp& g, const std::optional<ValidationResult>& label) {
   const BodyRef object = BodyRef::body(0);  // at the origin: world frame = object frame
   DatasetGrasp d;
   d.pregrasp = g.pose;
@@ -41,7 +43,13 @@ DatasetGrasp datasetGrasp(const PlannedGrasp& g, int held) {
   d.epsilon = g.epsilon;
   d.volume = g.volume;
   d.forceClosure = g.forceClosure;
-  d.held = held;
+  d.held = label ? (label->held ? 1 : 0) : -1;
+  if (label) {
+    for (const DirectionResult& r : label->directions) {
+      // The object sits at the origin unturned: world directions are the object frame's.
+      d.validation.push_back({r.direction, r.held, r.slip, r.turn, r.seconds, !r.failure.empty()});
+    }
+  }
   for (const Contact& c : g.contactList) {
     // The normal points into body1: out of the object when the object is body2.
     const bool object_second = c.body2 == object;
@@ -75,14 +83,14 @@ GraspDataset planGraspDataset(const DatasetRequest& request) {
   PlanningRun run = runPlanner(*planner, budget);
   finishGrasps(plan, run.grasps, 1);
 
-  std::vector<int> held(run.grasps.size(), -1);
+  std::vector<std::optional<ValidationResult>> labels(run.grasps.size());
   if (request.validate) {
     ValidationRequest validation;
     validation.seconds = request.validateSeconds;
     std::vector<World> worlds;
     for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(plan, g));
-    const auto labels = validateGrasps(worlds, 0, 0, validation, 1);
-    for (std::size_t i = 0; i < labels.size(); ++i) held[i] = labels[i].held ? 1 : 0;
+    const auto results = validateGrasps(worlds, 0, 0, validation, 1);
+    for (std::size_t i = 0; i < results.size(); ++i) labels[i] = results[i];
   }
 
   GraspDataset dataset;
@@ -95,7 +103,7 @@ GraspDataset planGraspDataset(const DatasetRequest& request) {
   dataset.engineVersion = engineVersion();
   dataset.seed = request.seed;
   for (std::size_t i = 0; i < run.grasps.size(); ++i)
-    dataset.grasps.push_back(datasetGrasp(run.grasps[i], held[i]));
+    dataset.grasps.push_back(datasetGrasp(run.grasps[i], labels[i]));
   return dataset;
 }
 

@@ -32,10 +32,12 @@ std::vector<std::pair<std::string, QualityMeasureFactory>> builtinQualityMeasure
           {"volume", [] { return std::make_unique<VolumeMeasure>(); }}};
 }
 
+bool isForceClosure(double epsilon) {
+  return epsilon >= kForceClosureEpsilon;  // false for NaN
+}
+
 bool isForceClosure(const GraspWrenchSpace& gws) {
-  if (!gws.built || gws.hyperplanes.empty()) return false;
-  return std::all_of(gws.hyperplanes.begin(), gws.hyperplanes.end(),
-                     [](const WrenchHyperplane& h) { return h.offset < 0.0; });
+  return isForceClosure(epsilonQuality(gws));
 }
 
 double epsilonQuality(const GraspWrenchSpace& gws) {

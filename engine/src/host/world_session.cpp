@@ -79,8 +79,7 @@ bool WorldSession::followRemovals(int& index, std::size_t& seen) const {
 }
 
 void WorldSession::save(const fs::path& target) {
-  // Files added without a world-file name are named relative to the saved file's folder.
-  saveWorldFile(world, target, SaveOptions{.root = target.parent_path()});
+  saveWorldFile(world, target);  // model paths written so that the file loads from anywhere
   file = target;
 }
 

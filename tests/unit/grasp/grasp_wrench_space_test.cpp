@@ -44,6 +44,46 @@ TEST(WrenchSpace, CrossPolytopeVolumeAndEpsilon) {
   }
 }
 
+// The force-closure decision is a stated tolerance, not a sign: an epsilon under
+// kForceClosureEpsilon (a grasp whose origin lies on its hull within qhull's rounding) is not
+// force closure, whatever its sign came out as.
+TEST(ForceClosure, DecidedByTheStatedTolerance) {
+  EXPECT_EQ(kForceClosureEpsilon, 1e-6);
+  EXPECT_FALSE(isForceClosure(6.9e-11));  // the dataset grasp of issue 39
+  EXPECT_FALSE(isForceClosure(0.0));
+  EXPECT_FALSE(isForceClosure(-1.0));
+  EXPECT_FALSE(isForceClosure(9.99e-7));
+  EXPECT_FALSE(isForceClosure(std::nan("")));
+  EXPECT_TRUE(isForceClosure(1e-6));
+  EXPECT_TRUE(isForceClosure(0.2));
+}
+
+// The cross-polytope moved along the normal of one facet until that facet passes `gap` from
+// the origin: a wrench space that barely contains the origin. Its epsilon is `gap` (every other
+// facet is farther: their normals make an angle with the moved one's).
+std::vector<std::vector<Vector6>> crossPolytopeWithin(double gap) {
+  const Vector6 normal = Vector6::Constant(1.0 / std::sqrt(6.0));
+  const Vector6 shift = -(1.0 / std::sqrt(6.0) - gap) * normal;
+  auto sets = crossPolytope();
+  for (auto& set : sets)
+    for (Vector6& w : set) w += shift;
+  return sets;
+}
+
+TEST(ForceClosure, AHullThatBarelyHoldsTheOriginIsNotForceClosure) {
+  const GraspWrenchSpace barely = graspWrenchSpace(crossPolytopeWithin(1e-10));
+  ASSERT_TRUE(barely.built) << barely.failure;
+  // Inside by rounding only: epsilon positive (or 0) and tiny, and not force closure.
+  EXPECT_GE(epsilonQuality(barely), 0.0);
+  EXPECT_LT(epsilonQuality(barely), 1e-8);
+  EXPECT_FALSE(isForceClosure(barely));
+  // The same hull with the origin 1e-4 inside is force closure, with that epsilon.
+  const GraspWrenchSpace inside = graspWrenchSpace(crossPolytopeWithin(1e-4));
+  ASSERT_TRUE(inside.built) << inside.failure;
+  EXPECT_NEAR(epsilonQuality(inside), 1e-4, 1e-9);
+  EXPECT_TRUE(isForceClosure(inside));
+}
+
 TEST(WrenchSpace, LInfinityOfAxisPairsIsTheCube) {
   // Minkowski sum over 6 contacts of {0, e_i, -e_i} = {-1, 0, 1}^6: the cube [-1, 1]^6.
   WrenchSpaceOptions options;

@@ -31,10 +31,27 @@ using QualityMeasureFactory = std::function<std::unique_ptr<QualityMeasure>()>;
 // (plugin/registry.hpp) starts with them, and plugins add more there.
 std::vector<std::pair<std::string, QualityMeasureFactory>> builtinQualityMeasures();
 
-// True when the origin lies strictly inside the built wrench space: every facet offset is
-// negative (qhull's normal . w + offset <= 0 inside), so the grasp can resist any wrench.
-// GraspIt! only looks for offsets > 0; for the measure-zero case of the origin exactly on a
-// facet (offset 0) it reports epsilon 0, and so does epsilonQuality(), while this says false.
+// The smallest epsilon (GraspIt!'s units: the distance from the origin to the nearest facet of
+// the grasp wrench space, forces in units of the contact's normal force, torques divided by the
+// object's max radius) that counts as force closure. A grasp is force closure when the origin
+// lies inside the wrench space by at least this much, not merely inside: qhull decides each
+// facet's offset to within its precision (about 1e-12 to 1e-9 for these hulls, more after the
+// exact pre-merges of a retried hull), so an epsilon of 6.9e-11 says "the origin sits on the
+// hull", and rounding alone would decide whether such a grasp resists every wrench. Real
+// force-closure grasps have epsilons of 1e-3 to 0.5 (plannerMug's best: 0.2), so 1e-6 lies three
+// orders of magnitude above qhull's noise and three below the weakest grasp worth keeping; a
+// grasp below it resists some wrench only with forces a million times its contact forces.
+inline constexpr double kForceClosureEpsilon = 1e-6;
+
+// The one decision every output makes (grasps, plans, datasets, the C ABI, Lua, Python): an
+// epsilon (epsilonQuality(), -1 when the origin is outside) is force closure when it is at
+// least kForceClosureEpsilon. NaN is not.
+bool isForceClosure(double epsilon);
+
+// isForceClosure(epsilonQuality(gws)): the origin lies inside the built wrench space, every facet
+// at least kForceClosureEpsilon from it. GraspIt! only looks for offsets > 0, so a grasp whose
+// origin sits on the hull within rounding (epsilon 0 or 6.9e-11) is force closure to it, or not,
+// as rounding falls; here it is not (its epsilon is still reported as computed).
 bool isForceClosure(const GraspWrenchSpace& gws);
 
 // The built-in measures as plain functions.

@@ -5,11 +5,17 @@
 //   /grasps/qualities/epsilon, .../volume              N
 //   /grasps/qualities/force_closure                    N, uint8
 //   /grasps/qualities/held                             N, int8 (-1: not validated)
+//   /grasps/validation/held (int8, -1: not validated), .../failed (uint8),
+//     .../slip (mm), .../turn (rad), .../seconds       N x 6: each direction of the validation
+//   /grasps/validation/directions                      6 x 3: +x, -x, +y, -y, +z, -z
 //   /grasps/contacts/offsets                           N + 1, uint64: grasp i's contacts are
 //                                                       rows offsets[i] .. offsets[i+1]
 //   /grasps/contacts/points, .../normals               M x 3, object frame
-//   /object/file, /object/name, /object/mass, /hand/file, /hand/name
+//   /object/file, /object/name, /object/mass, /hand/file, /hand/name (files relative to the
+//                                                       dataset file's folder, or absolute)
 //   root attributes: schema_version, engine_version, units ("mm"), seed
+// Schema 1 files (no /grasps/validation; file names as batch was given them) are still read:
+// their grasps have no per-direction validation and their file names come back as stored.
 
 #include "graspkit/io/dataset/grasp_dataset_file.hpp"
 
@@ -27,6 +33,7 @@
 #include <type_traits>
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/base/file_reference.hpp"
 #include "graspkit/base/input_file.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "io/dataset/contained_read.hpp"
@@ -37,7 +44,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kSchemaVersion = 1;
+// 2: /grasps/validation, and /object/file and /hand/file relative to the dataset file's folder.
+constexpr int kSchemaVersion = 2;
+constexpr int kOldestSchemaVersion = 1;
+constexpr hsize_t kDirections = 6;
 
 // The HDF5 library this Debian build gives may not be thread-safe: one call at a time.
 std::mutex& hdf5Mutex() {
@@ -141,6 +151,13 @@ std::vector<double> poses(const std::vector<DatasetGrasp>& grasps, bool closed) 
   return out;
 }
 
+// The directions validation turns the weight along, in order (dynamics/grasp_validation.hpp).
+const std::vector<double>& validationDirections() {
+  static const std::vector<double> directions = {1, 0,  0, -1, 0, 0, 0, 1, 0,
+                                                 0, -1, 0, 0,  0, 1, 0, 0, -1};
+  return directions;
+}
+
 void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) {
   Writer w(file, handle);
   const auto& grasps = dataset.grasps;
@@ -159,12 +176,14 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
   w.attribute("units", string_type, &units);
   w.attribute("seed", H5T_NATIVE_UINT64, &dataset.seed);
 
+  const fs::path folder = file.parent_path();
   const hid_t object = w.group(handle, "object");
-  w.text(object, "file", dataset.objectFile);
+  w.text(object, "file",
+         dataset.objectFile.empty() ? "" : fileReference(dataset.objectFile, folder));
   w.text(object, "name", dataset.objectName);
   w.scalar(object, "mass", H5T_NATIVE_DOUBLE, &dataset.objectMass);
   const hid_t hand = w.group(handle, "hand");
-  w.text(hand, "file", dataset.handFile);
+  w.text(hand, "file", dataset.handFile.empty() ? "" : fileReference(dataset.handFile, folder));
   w.text(hand, "name", dataset.handName);
 
   const hid_t root = w.group(handle, "grasps");
@@ -210,6 +229,33 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
   w.array(qualities, "volume", H5T_NATIVE_DOUBLE, {n}, volume.data());
   w.array(qualities, "force_closure", H5T_NATIVE_UINT8, {n}, force_closure.data());
   w.array(qualities, "held", H5T_NATIVE_INT8, {n}, held.data());
+
+  // Every grasp has 6 rows: an unvalidated grasp's are held -1 and zeros.
+  std::vector<std::int8_t> direction_held;
+  std::vector<std::uint8_t> direction_failed;
+  std::vector<double> slip, turn, seconds;
+  for (const DatasetGrasp& g : grasps) {
+    if (!g.validation.empty() && g.validation.size() != kDirections)
+      throw Error(
+          SourceLocation{file.string()},
+          fmt::format("a grasp's validation has {} directions, not 6", g.validation.size()));
+    for (std::size_t k = 0; k < kDirections; ++k) {
+      const DatasetDirection d = g.validation.empty() ? DatasetDirection{} : g.validation[k];
+      direction_held.push_back(g.validation.empty() ? -1 : d.held ? 1 : 0);
+      direction_failed.push_back(d.failed ? 1 : 0);
+      slip.push_back(d.slip);
+      turn.push_back(d.turn);
+      seconds.push_back(d.seconds);
+    }
+  }
+  const hid_t validation = w.group(root, "validation");
+  w.array(validation, "directions", H5T_NATIVE_DOUBLE, {kDirections, 3},
+          validationDirections().data());
+  w.array(validation, "held", H5T_NATIVE_INT8, {n, kDirections}, direction_held.data());
+  w.array(validation, "failed", H5T_NATIVE_UINT8, {n, kDirections}, direction_failed.data());
+  w.array(validation, "slip", H5T_NATIVE_DOUBLE, {n, kDirections}, slip.data());
+  w.array(validation, "turn", H5T_NATIVE_DOUBLE, {n, kDirections}, turn.data());
+  w.array(validation, "seconds", H5T_NATIVE_DOUBLE, {n, kDirections}, seconds.data());
 
   const hid_t contacts = w.group(root, "contacts");
   std::vector<std::uint64_t> offsets{0};
@@ -401,16 +447,23 @@ Transform poseAt(const Reader& r, const char* path, const std::vector<double>& v
 
 GraspDataset readFile(const fs::path& file, hid_t handle) {
   Reader r(file, handle);
-  if (const int schema = r.attribute<int>("schema_version", H5T_NATIVE_INT, H5T_INTEGER);
-      schema != kSchemaVersion)
-    r.fail("schema_version", fmt::format("is {}; this graspkit reads {}", schema, kSchemaVersion));
+  const int schema = r.attribute<int>("schema_version", H5T_NATIVE_INT, H5T_INTEGER);
+  if (schema < kOldestSchemaVersion || schema > kSchemaVersion)
+    r.fail("schema_version", fmt::format("is {}; this graspkit reads {} to {}", schema,
+                                         kOldestSchemaVersion, kSchemaVersion));
+  // Since schema 2 the files are named relative to the dataset's folder (or absolutely).
+  const fs::path folder = fs::absolute(file).parent_path();
+  auto named = [&](const std::string& stored) {
+    if (schema < 2 || stored.empty()) return stored;
+    return (folder / stored).lexically_normal().string();
+  };
   GraspDataset dataset;
   dataset.engineVersion = r.textAttribute("engine_version");
   dataset.seed = r.attribute<std::uint64_t>("seed", H5T_NATIVE_UINT64, H5T_INTEGER);
-  dataset.objectFile = r.text("/object/file");
+  dataset.objectFile = named(r.text("/object/file"));
   dataset.objectName = r.text("/object/name");
   dataset.objectMass = r.number("/object/mass");
-  dataset.handFile = r.text("/hand/file");
+  dataset.handFile = named(r.text("/hand/file"));
   dataset.handName = r.text("/hand/name");
 
   const auto closed_poses = r.array<double>("/grasps/transforms", H5T_NATIVE_DOUBLE, {0, 4, 4});
@@ -428,6 +481,21 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
   const auto force_closure =
       r.array<std::uint8_t>("/grasps/qualities/force_closure", H5T_NATIVE_UINT8, {n});
   const auto held = r.array<std::int8_t>("/grasps/qualities/held", H5T_NATIVE_INT8, {n});
+  std::vector<double> directions, slip, turn, seconds;
+  std::vector<std::int8_t> direction_held;
+  std::vector<std::uint8_t> direction_failed;
+  if (schema >= 2) {
+    directions = r.array<double>("/grasps/validation/directions", H5T_NATIVE_DOUBLE, {6, 3});
+    for (const double value : directions)
+      if (std::abs(value) > 1.0) r.fail("/grasps/validation/directions", "is not unit vectors");
+    direction_held =
+        r.array<std::int8_t>("/grasps/validation/held", H5T_NATIVE_INT8, {n, kDirections});
+    direction_failed =
+        r.array<std::uint8_t>("/grasps/validation/failed", H5T_NATIVE_UINT8, {n, kDirections});
+    slip = r.array<double>("/grasps/validation/slip", H5T_NATIVE_DOUBLE, {n, kDirections});
+    turn = r.array<double>("/grasps/validation/turn", H5T_NATIVE_DOUBLE, {n, kDirections});
+    seconds = r.array<double>("/grasps/validation/seconds", H5T_NATIVE_DOUBLE, {n, kDirections});
+  }
   const auto offsets =
       r.array<std::uint64_t>("/grasps/contacts/offsets", H5T_NATIVE_UINT64, {n + 1});
   const hsize_t m = offsets.back();
@@ -451,6 +519,24 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     if (held[i] < -1 || held[i] > 1)
       r.fail("/grasps/qualities/held", "holds a value not -1, 0 or 1");
     g.held = held[i];
+    if (schema >= 2 && direction_held[i * kDirections] != -1) {
+      for (std::size_t k = 0; k < kDirections; ++k) {
+        const std::size_t at = i * kDirections + k;
+        if (direction_held[at] != 0 && direction_held[at] != 1)
+          r.fail("/grasps/validation/held",
+                 fmt::format("holds {} for grasp {}, direction {}: a validated grasp's "
+                             "directions are 0 or 1",
+                             direction_held[at], i, k));
+        DatasetDirection d;
+        d.direction = Vector3(directions[3 * k], directions[3 * k + 1], directions[3 * k + 2]);
+        d.held = direction_held[at] == 1;
+        d.failed = direction_failed[at] != 0;
+        d.slip = slip[at];
+        d.turn = turn[at];
+        d.seconds = seconds[at];
+        g.validation.push_back(d);
+      }
+    }
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       g.contactPoints.emplace_back(points[3 * k], points[3 * k + 1], points[3 * k + 2]);
       g.contactNormals.emplace_back(normals[3 * k], normals[3 * k + 1], normals[3 * k + 2]);
@@ -560,6 +646,15 @@ std::string pack(const GraspDataset& d) {
     p.put(g.volume);
     p.put(g.forceClosure);
     p.put(g.held);
+    p.put(g.validation.size());
+    for (const DatasetDirection& d : g.validation) {
+      p.put(Eigen::Matrix<double, 3, 1>(d.direction));
+      p.put(d.held);
+      p.put(d.slip);
+      p.put(d.turn);
+      p.put(d.seconds);
+      p.put(d.failed);
+    }
     p.put(g.contactPoints);
     p.put(g.contactNormals);
   }
@@ -590,6 +685,21 @@ GraspDataset unpack(std::string_view bytes) {
     u.get(g.volume);
     u.get(g.forceClosure);
     u.get(g.held);
+    std::size_t directions = 0;
+    u.get(directions);
+    if (directions > kDirections)
+      throw Error("a dataset read in a child process came back malformed");
+    g.validation.resize(directions);
+    for (DatasetDirection& d : g.validation) {
+      Eigen::Matrix<double, 3, 1> direction;
+      u.get(direction);
+      d.direction = direction;
+      u.get(d.held);
+      u.get(d.slip);
+      u.get(d.turn);
+      u.get(d.seconds);
+      u.get(d.failed);
+    }
     u.get(g.contactPoints);
     u.get(g.contactNormals);
   }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/base/file_reference.hpp"
 #include "graspkit/base/log.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/geometry/mass_properties.hpp"
@@ -216,7 +217,8 @@ void warnIfInertiaFallback(const BodyModel& body, const SourceLocation& where) {
                    body.name, body.file.filename().string()));
 }
 
-std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& options) {
+std::string bodyXmlForMesh(const fs::path& mesh_file, const fs::path& xml_file,
+                           const BodyXmlOptions& options) {
   if (!(options.scale > 0.0) || !std::isfinite(options.scale))
     throw Error(SourceLocation{mesh_file.string()},
                 fmt::format("the scale must be a positive number, found {}", options.scale));
@@ -259,7 +261,7 @@ std::string bodyXmlForMesh(const fs::path& mesh_file, const BodyXmlOptions& opti
       break;
   }
   xml += fmt::format("  <geometryFile type=\"{}\">{}</geometryFile>\n", type,
-                     io::xmlEscaped(mesh_file.filename().string()));
+                     io::xmlEscaped(fileReference(mesh_file, xml_file.parent_path())));
   if (options.scale != 1.0)
     xml += fmt::format("  <geometryScaling>{}</geometryScaling>\n", options.scale);
   return xml + "</root>\n";
@@ -276,7 +278,7 @@ fs::path saveBodyFiles(const fs::path& folder, const std::string& name, const Tr
   const fs::path off = folder / (name + ".off");
   const fs::path xml = folder / (name + ".xml");
   writeFileAtomically(off, io::offText(mesh));
-  writeFileAtomically(xml, bodyXmlForMesh(off, options));
+  writeFileAtomically(xml, bodyXmlForMesh(off, xml, options));
   return xml;
 }
 

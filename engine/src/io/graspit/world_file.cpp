@@ -1,5 +1,6 @@
 #include "graspkit/io/graspit/world_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include "graspkit/base/file_reference.hpp"
 #include "graspkit/base/input_file.hpp"
 #include "graspkit/base/log.hpp"
 #include "graspkit/base/output_file.hpp"
@@ -54,11 +56,21 @@ class WorldReader {
   }
 
  private:
+  // The search rule (world_file.hpp, loadWorldFile): an absolute name is itself; a name
+  // starting with `./` or `../` (what graspkit writes) is first looked for beside this world
+  // file; every other name, and such a name not found there, is looked up under each of roots_
+  // in turn (--root, $GRASPKIT_ROOT, $GRASPIT, then this file's folder and each of its parents:
+  // GraspIt!'s names are relative to its root, and `../shared/...` names relative to a root are
+  // in use).
   fs::path resolve(const XMLElement& element) {
     const std::string name = xml::text(element);
     if (name.empty()) throw Error(xml::at(file_, element), "empty file name");
     // One place to look: the read gives the reason it fails (refused, missing, a loop).
     if (fs::path(name).is_absolute()) return name;
+    if (isFileRelative(name)) {
+      const fs::path path = fs::absolute(file_).parent_path() / name;
+      if (inputFileFound(path)) return path;
+    }
     std::optional<fs::path> refused;
     for (const fs::path& root : roots_) {
       if (inputFileFound(root / name)) return root / name;
@@ -67,7 +79,7 @@ class WorldReader {
     // Found nowhere it may be read: the read of the first refused place gives the refusal.
     if (refused) return *refused;
     std::string tried;
-    for (const fs::path& root : roots_) tried += "\n  " + root.string();
+    for (const fs::path& root : roots_) tried.append("\n  ").append(root.string());
     throw Error(
         xml::at(file_, element),
         fmt::format("'{}' not found; searched (set --root or GRASPKIT_ROOT):{}", name, tried));
@@ -192,13 +204,31 @@ std::string signedNumber(double value) {
   return value >= 0 ? "+" + text : text;
 }
 
-std::string relativeName(const fs::path& file, const fs::path& root) {
-  if (!root.empty()) {
-    std::error_code ec;
-    const fs::path rel = fs::relative(fs::weakly_canonical(file), fs::weakly_canonical(root), ec);
-    if (!ec && !rel.empty() && *rel.begin() != "..") return rel.generic_string();
+// The name a world saved as `world_file` gives a model file, so that the world loads again from
+// any working folder with no --root (world_file.hpp, base/file_reference.hpp):
+// - the name it was loaded by (`written`, GraspIt!'s root-relative `models/objects/mug.xml`),
+//   when the saved world's folder or one of its parents holds that very file (a world saved
+//   back into its own tree keeps GraspIt!'s names);
+// - else the model's path relative to the saved world's folder, starting with `./` or `../`
+//   (looked for beside the world file before any root), or its absolute path when the two share
+//   no folder below the file system's root.
+std::string modelName(const std::string& written, const fs::path& model_file,
+                      const fs::path& world_file) {
+  if (model_file.empty()) return written;  // nothing to say better (a body made in memory)
+  const fs::path folder = fs::absolute(world_file).parent_path();
+  std::error_code ec;
+  if (!written.empty() && !fs::path(written).is_absolute() && !isFileRelative(written)) {
+    for (fs::path dir = folder;; dir = dir.parent_path()) {
+      if (fs::exists(dir / written, ec)) {
+        if (fs::equivalent(dir / written, model_file, ec)) return written;
+        break;  // the reload would find another file first
+      }
+      if (!dir.has_parent_path() || dir.parent_path() == dir) break;
+    }
   }
-  return fs::absolute(file).generic_string();
+  const std::string reference = fileReference(model_file, folder);
+  return fs::path(reference).is_absolute() || isFileRelative(reference) ? reference
+                                                                        : "./" + reference;
 }
 
 void writeTransform(std::ostream& out, const Transform& transform, const char* indent) {
@@ -221,22 +251,21 @@ std::string provenanceComment(const World& world) {
   return text + " -->\n";
 }
 
-std::string worldText(const World& world, const SaveOptions& options) {
+std::string worldText(const World& world, const fs::path& file) {
   std::ostringstream out;
   out << "<?xml version=\"1.0\" ?>\n" << provenanceComment(world) << "<world>\n";
   for (const Body& body : world.bodies()) {
     const char* tag = body.kind == BodyKind::Graspable ? "graspableBody" : "obstacle";
-    const std::string name = body.filename.empty() ? relativeName(body.model->file, options.root)
-                                                   : body.filename.generic_string();
+    const std::string name =
+        modelName(body.filename.generic_string(), body.model ? body.model->file : fs::path(), file);
     out << "    <" << tag << ">\n        <filename>" << io::xmlEscaped(name) << "</filename>\n";
     writeTransform(out, body.pose, "        ");
     out << "    </" << tag << ">\n";
   }
   for (int r = 0; r < world.robotCount(); ++r) {
     const WorldRobot& entry = world.worldRobot(r);
-    const std::string name = entry.filename.empty()
-                                 ? relativeName(entry.robot.model().file, options.root)
-                                 : entry.filename.generic_string();
+    const std::string name =
+        modelName(entry.filename.generic_string(), entry.robot.model().file, file);
     out << "    <robot>\n        <filename>" << io::xmlEscaped(name) << "</filename>\n"
         << "        <dofValues>" << formatDofValues(entry.robot) << "</dofValues>\n";
     writeTransform(out, entry.robot.pose(), "        ");
@@ -247,8 +276,10 @@ std::string worldText(const World& world, const SaveOptions& options) {
         << "        <parentRobot>" << c.parentRobot << "</parentRobot>\n"
         << "        <parentChain>" << c.parentChain << "</parentChain>\n"
         << "        <childRobot>" << c.childRobot << "</childRobot>\n";
-    if (!c.mountFilename.empty()) {
-      out << "        <mountFilename>" << io::xmlEscaped(c.mountFilename) << "</mountFilename>\n";
+    if (!c.mountFilename.empty() || c.mount) {
+      const std::string name =
+          modelName(c.mountFilename, c.mount ? c.mount->file : fs::path(), file);
+      out << "        <mountFilename>" << io::xmlEscaped(name) << "</mountFilename>\n";
     }
     writeTransform(out, c.offset, "        ");
     out << "    </connection>\n";
@@ -274,15 +305,25 @@ std::string rootName(const fs::path& file) {
 }  // namespace
 
 std::vector<fs::path> searchRoots(const fs::path& world_file, const LoadOptions& options) {
-  std::vector<fs::path> roots = options.roots;
+  std::vector<fs::path> roots;
+  std::vector<fs::path> seen;  // each folder once, however it was spelled (models, ./models/)
+  auto add = [&](const fs::path& folder) {
+    std::error_code ec;
+    fs::path key = fs::absolute(folder, ec).lexically_normal();
+    if (key.has_relative_path() && !key.has_filename()) key = key.parent_path();  // trailing /
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) return;
+    seen.push_back(key);
+    roots.push_back(folder);
+  };
+  for (const fs::path& root : options.roots) add(root);
   if (options.useEnvironment) {
     for (const char* variable : {"GRASPKIT_ROOT", "GRASPIT"}) {
-      if (const char* value = std::getenv(variable); value && *value) roots.emplace_back(value);
+      if (const char* value = std::getenv(variable); value && *value) add(value);
     }
   }
   fs::path dir = fs::absolute(world_file).parent_path();
   while (true) {
-    roots.push_back(dir);
+    add(dir);
     if (!dir.has_parent_path() || dir.parent_path() == dir) break;
     dir = dir.parent_path();
   }
@@ -359,8 +400,8 @@ std::string formatDofValues(const Robot& robot) {
   return out;
 }
 
-void saveWorldFile(const World& world, const fs::path& file, const SaveOptions& options) {
-  writeFileAtomically(file, worldText(world, options));
+void saveWorldFile(const World& world, const fs::path& file) {
+  writeFileAtomically(file, worldText(world, file));
 }
 
 }  // namespace graspkit

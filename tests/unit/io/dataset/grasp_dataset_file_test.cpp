@@ -1,7 +1,11 @@
-// Grasp dataset files: what is saved loads back equal, field for field; saving again gives the
-// same bytes; an empty dataset is a valid file; a file that is not one is refused with its name.
+// Grasp dataset files: what is saved loads back equal, field for field (the validation's six
+// directions included); saving again gives the same bytes; the object and hand files are named
+// from wherever the file is read; an empty dataset is a valid file; a schema 1 file still reads;
+// a file that is not one is refused with its name.
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -41,7 +45,18 @@ GraspDataset twoGrasps() {
   a.epsilon = 0.16891;
   a.volume = 0.10569;
   a.forceClosure = true;
-  a.held = 1;
+  a.held = 0;  // let go in one direction
+  const Vector3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int k = 0; k < 6; ++k) {
+    DatasetDirection direction;
+    direction.direction = axes[k];
+    direction.held = k != 3;
+    direction.slip = k == 3 ? 41.25 : 0.125 * (k + 1);
+    direction.turn = 0.001 * (k + 1);
+    direction.seconds = k == 3 ? 0.6875 : 2.0 - 0.25 * k;
+    direction.failed = k == 5;
+    a.validation.push_back(direction);
+  }
   a.contactPoints = {{1, 2, 3}, {4, 5, 6}, {-7, 8.5, 9}};
   a.contactNormals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
   DatasetGrasp b;  // no contacts, not validated
@@ -62,10 +77,14 @@ TEST(GraspDatasetFile, LoadsBackWhatWasSaved) {
   const GraspDataset saved = twoGrasps();
   saveGraspDataset(saved, file);
   const GraspDataset loaded = loadGraspDataset(file);
-  EXPECT_EQ(loaded.objectFile, saved.objectFile);
+  // Files come back absolute, naming what the saved (working-folder-relative) names named.
+  EXPECT_TRUE(fs::path(loaded.objectFile).is_absolute()) << loaded.objectFile;
+  EXPECT_EQ(fs::weakly_canonical(loaded.objectFile),
+            fs::weakly_canonical(fs::absolute(saved.objectFile)));
   EXPECT_EQ(loaded.objectName, saved.objectName);
   EXPECT_EQ(loaded.objectMass, saved.objectMass);
-  EXPECT_EQ(loaded.handFile, saved.handFile);
+  EXPECT_EQ(fs::weakly_canonical(loaded.handFile),
+            fs::weakly_canonical(fs::absolute(saved.handFile)));
   EXPECT_EQ(loaded.handName, saved.handName);
   EXPECT_EQ(loaded.engineVersion, saved.engineVersion);
   EXPECT_EQ(loaded.seed, saved.seed);
@@ -89,11 +108,113 @@ TEST(GraspDatasetFile, LoadsBackWhatWasSaved) {
     EXPECT_EQ(l.held, s.held);
     EXPECT_EQ(l.contactPoints, s.contactPoints);
     EXPECT_EQ(l.contactNormals, s.contactNormals);
+    ASSERT_EQ(l.validation.size(), s.validation.size());
+    for (std::size_t k = 0; k < s.validation.size(); ++k) {
+      EXPECT_EQ(l.validation[k].direction, s.validation[k].direction) << k;
+      EXPECT_EQ(l.validation[k].held, s.validation[k].held) << k;
+      EXPECT_EQ(l.validation[k].slip, s.validation[k].slip) << k;
+      EXPECT_EQ(l.validation[k].turn, s.validation[k].turn) << k;
+      EXPECT_EQ(l.validation[k].seconds, s.validation[k].seconds) << k;
+      EXPECT_EQ(l.validation[k].failed, s.validation[k].failed) << k;
+    }
   }
+  EXPECT_EQ(loaded.grasps[0].validation.size(), 6u);
+  EXPECT_TRUE(loaded.grasps[1].validation.empty());  // not validated
   // The same dataset, saved again, is the same file.
   const fs::path again = test::scratchDir() / "two_grasps_again.h5";
   saveGraspDataset(saved, again);
   EXPECT_EQ(bytesOf(again), bytesOf(file));
+}
+
+// Runs `body` with the working folder at `folder`, restoring it afterwards.
+template <class F>
+void inFolder(const fs::path& folder, F body) {
+  const fs::path before = fs::current_path();
+  fs::current_path(folder);
+  try {
+    body();
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+  fs::current_path(before);
+}
+
+TEST(GraspDatasetFile, NamesItsFilesFromAnyWorkingFolder) {
+  // A project with its objects and a dataset folder; the dataset is written from the project's
+  // folder with the names batch gives (relative to it), and read from elsewhere.
+  const fs::path project = test::scratchDir();
+  fs::create_directories(project / "objects");
+  fs::create_directories(project / "out" / "grasps");
+  std::ofstream(project / "objects" / "box.xml") << "<root/>\n";
+  std::ofstream(project / "hand.xml") << "<robot/>\n";
+  GraspDataset saved = twoGrasps();
+  saved.objectFile = "objects/box.xml";
+  saved.handFile = "hand.xml";
+  inFolder(project, [&] { saveGraspDataset(saved, "out/grasps/box.h5"); });
+  const fs::path elsewhere = test::scratchDir();
+  inFolder(elsewhere, [&] {
+    const GraspDataset loaded = loadGraspDataset(project / "out" / "grasps" / "box.h5");
+    EXPECT_TRUE(fs::equivalent(loaded.objectFile, project / "objects" / "box.xml"))
+        << loaded.objectFile;
+    EXPECT_TRUE(fs::equivalent(loaded.handFile, project / "hand.xml")) << loaded.handFile;
+  });
+  // The project moved as a whole: the dataset still names its object.
+  const fs::path moved = test::scratchDir() / "moved";
+  fs::rename(project, moved);
+  const GraspDataset loaded = loadGraspDataset(moved / "out" / "grasps" / "box.h5");
+  EXPECT_TRUE(fs::equivalent(loaded.objectFile, moved / "objects" / "box.xml"))
+      << loaded.objectFile;
+}
+
+TEST(GraspDatasetFile, SchemaOneFilesStillRead) {
+  // A file as graspkit wrote it before schema 2: no /grasps/validation, names as given.
+  const fs::path file = test::scratchDir() / "schema1.h5";
+  GraspDataset saved = twoGrasps();
+  saved.objectFile = "/data/objects/object_0001_cylinder.xml";
+  saveGraspDataset(saved, file);
+  const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  EXPECT_GE(H5Ldelete(h, "/grasps/validation", H5P_DEFAULT), 0);
+  const hid_t attr = H5Aopen(h, "schema_version", H5P_DEFAULT);
+  const int one = 1;
+  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT, &one), 0);
+  H5Aclose(attr);
+  const hid_t text = H5Tcopy(H5T_C_S1);
+  H5Tset_size(text, H5T_VARIABLE);
+  H5Tset_cset(text, H5T_CSET_UTF8);
+  const hid_t hand = H5Dopen2(h, "/hand/file", H5P_DEFAULT);
+  const char* as_given = "models/robots/Barrett/Barrett.xml";
+  EXPECT_GE(H5Dwrite(hand, text, H5S_ALL, H5S_ALL, H5P_DEFAULT, &as_given), 0);
+  H5Dclose(hand);
+  H5Tclose(text);
+  H5Fclose(h);
+  const GraspDataset loaded = loadGraspDataset(file);
+  ASSERT_EQ(loaded.grasps.size(), 2u);
+  EXPECT_EQ(loaded.grasps[0].held, 0);
+  EXPECT_TRUE(loaded.grasps[0].validation.empty());
+  EXPECT_EQ(loaded.grasps[0].epsilon, saved.grasps[0].epsilon);
+  EXPECT_EQ(loaded.handFile, "models/robots/Barrett/Barrett.xml");  // as stored
+  EXPECT_EQ(loaded.objectFile, "/data/objects/object_0001_cylinder.xml");
+}
+
+TEST(GraspDatasetFile, AValidationRowThatIsNotABooleanIsRefused) {
+  const fs::path file = test::scratchDir() / "bad_validation.h5";
+  saveGraspDataset(twoGrasps(), file);
+  const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  const hid_t set = H5Dopen2(h, "/grasps/validation/held", H5P_DEFAULT);
+  std::int8_t held[12] = {1, 1, 7, 1, 1, 1, -1, -1, -1, -1, -1, -1};
+  EXPECT_GE(H5Dwrite(set, H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, held), 0);
+  H5Dclose(set);
+  H5Fclose(h);
+  try {
+    loadGraspDataset(file);
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where().file, file.string());
+    EXPECT_NE(std::string(e.what()).find("/grasps/validation/held"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GraspDatasetFile, AnObjectWithNoGraspsIsAValidFile) {

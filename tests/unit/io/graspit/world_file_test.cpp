@@ -1,6 +1,7 @@
 // World files written and read at test time: the fullTransform text, the breakaway dofValues
-// encoding, save -> load -> save stability, atomic saves, <filename> resolution order and the
-// camera's x y z w quaternion.
+// encoding, save -> load -> save stability, atomic saves, <filename> resolution order, saved
+// worlds that load from any working folder without the roots they were loaded with, Body XML
+// for a mesh elsewhere, and the camera's x y z w quaternion.
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -24,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/base/file_reference.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/base/version.hpp"
 #include "graspkit/io/graspit/body_file.hpp"
@@ -533,6 +535,227 @@ TEST(WorldFile, FilenameResolutionOrder) {
   EXPECT_EQ(roots[2], fs::absolute(top / "a"));
   EXPECT_EQ(roots[3], fs::absolute(top));
   EXPECT_EQ(roots.back(), fs::path("/"));
+}
+
+// Runs `body` with the working folder at `folder`, restoring it afterwards.
+template <class F>
+void inFolder(const fs::path& folder, F body) {
+  const fs::path before = fs::current_path();
+  fs::current_path(folder);
+  try {
+    body();
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+  fs::current_path(before);
+}
+
+// The text of each <tag> element in `text`, in order.
+std::vector<std::string> elementTexts(const std::string& text, const std::string& tag) {
+  std::vector<std::string> found;
+  const std::string open = "<" + tag + ">", close = "</" + tag + ">";
+  for (std::size_t at = text.find(open); at != std::string::npos; at = text.find(open, at)) {
+    at += open.size();
+    found.push_back(text.substr(at, text.find(close, at) - at));
+  }
+  return found;
+}
+
+// A world that needs a root: lib/models holds the models, src/w.xml names them as GraspIt!
+// does (relative to the root) with a graspable box, an obstacle and the breakaway gripper.
+struct RootedWorld {
+  fs::path top, models, file;
+};
+
+RootedWorld rootedWorld() {
+  RootedWorld w;
+  w.top = test::scratchDir();
+  w.models = w.top / "lib" / "models";
+  writeBody(w.models / "objects", "box", "glass");
+  writeBody(w.models / "obstacles", "floor", "stone");
+  writeGripper(w.models);
+  w.file = w.top / "src" / "w.xml";
+  writeText(w.file,
+            "<?xml version=\"1.0\" ?>\n<world>\n"
+            "  <obstacle><filename>obstacles/floor.xml</filename><transform><fullTransform>"
+            "(+1 +0 +0 +0)[+0 +0 -5]</fullTransform></transform></obstacle>\n"
+            "  <graspableBody><filename>objects/box.xml</filename><transform><fullTransform>"
+            "(+0.8 +0 +0.6 +0)[+10 +20 +30]</fullTransform></transform></graspableBody>\n"
+            "  <robot><filename>robots/Gripper/Gripper.xml</filename>"
+            "<dofValues>+0.25 +0.5 0 1 +0.4</dofValues><transform><fullTransform>"
+            "(+0 +1 +0 +0)[+0 +0 +190]</fullTransform></transform></robot>\n</world>\n");
+  return w;
+}
+
+LoadOptions rootedAt(const fs::path& root) {
+  LoadOptions options = hermetic();
+  options.roots = {root};
+  return options;
+}
+
+// `reloaded` has the bodies, materials, poses, DOFs, breakaway state and link poses of `world`.
+void expectSameWorld(const World& reloaded, const World& world) {
+  ASSERT_EQ(reloaded.bodies().size(), world.bodies().size());
+  for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+    const Body& a = reloaded.bodies()[i];
+    const Body& b = world.bodies()[i];
+    EXPECT_EQ(a.kind, b.kind) << i;
+    EXPECT_EQ(a.model->material, b.model->material) << i;
+    EXPECT_TRUE(fs::equivalent(a.model->file, b.model->file)) << a.model->file;
+    EXPECT_LT(transformError(a.pose, b.pose), 1e-12) << i;
+  }
+  ASSERT_EQ(reloaded.robotCount(), world.robotCount());
+  for (int r = 0; r < world.robotCount(); ++r) {
+    const Robot& a = reloaded.robot(r);
+    const Robot& b = world.robot(r);
+    EXPECT_TRUE(fs::equivalent(a.model().file, b.model().file));
+    const auto values = [](auto span) { return std::vector<double>(span.begin(), span.end()); };
+    EXPECT_EQ(values(a.dofValues()), values(b.dofValues()));
+    ASSERT_EQ(a.breakaway().size(), b.breakaway().size());
+    for (std::size_t j = 0; j < b.breakaway().size(); ++j) {
+      EXPECT_EQ(a.breakaway()[j].engaged, b.breakaway()[j].engaged) << j;
+      EXPECT_EQ(a.breakaway()[j].value, b.breakaway()[j].value) << j;
+    }
+    EXPECT_LT(transformError(a.pose(), b.pose()), 1e-12);
+    EXPECT_EQ(values(a.jointValues()), values(b.jointValues()));
+  }
+}
+
+TEST(WorldPaths, ASavedWorldLoadsFromAnyFolderWithoutItsRoot) {
+  const RootedWorld w = rootedWorld();
+  EXPECT_THROW(loadWorldFile(w.file, hermetic()), Error);  // it does need its root
+  const World world = loadWorldFile(w.file, rootedAt(w.models));
+  ASSERT_TRUE(world.robot(0).breakaway()[2].engaged);  // the file's "1 +0.4"
+
+  const fs::path saved = w.top / "out" / "a" / "saved.xml";
+  fs::create_directories(saved.parent_path());
+  saveWorldFile(world, saved);
+  // Named relative to the saved file (the two share w.top): ./ or ../, so never under a root.
+  for (const std::string& name : elementTexts(readText(saved), "filename"))
+    EXPECT_TRUE(name.starts_with("../../lib/models/")) << name;
+  // Loaded with no root, from another working folder, and from the file system's root.
+  for (const fs::path& folder : {test::scratchDir(), fs::path("/")}) {
+    inFolder(folder, [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
+  }
+  // A --root that holds other models of the same names changes nothing: ./ and ../ names are
+  // the saved file's own.
+  const fs::path decoy = w.top / "decoy";
+  writeBody(decoy / "objects", "box", "metal");
+  writeBody(decoy / "lib" / "models" / "objects", "box", "metal");
+  expectSameWorld(loadWorldFile(saved, rootedAt(decoy)), world);
+  // The whole tree moved: the relative names move with it.
+  const fs::path moved = test::scratchDir() / "moved";
+  fs::rename(w.top, moved);
+  const World there = loadWorldFile(moved / "out" / "a" / "saved.xml", hermetic());
+  EXPECT_TRUE(fs::equivalent(there.bodies()[1].model->file,
+                             moved / "lib" / "models" / "objects" / "box.xml"));
+}
+
+TEST(WorldPaths, SavedWhereItSharesNoFolderItNamesModelsAbsolutely) {
+  const RootedWorld w = rootedWorld();
+  const World world = loadWorldFile(w.file, rootedAt(w.models));
+  fs::path other = fs::temp_directory_path() / fmt::format("graspkit-world-paths-{}", getpid());
+  fs::create_directories(other);
+  const fs::path saved = other / "saved.xml";
+  saveWorldFile(world, saved);
+  const bool shared = *fs::weakly_canonical(other).relative_path().begin() ==
+                      *fs::weakly_canonical(w.models).relative_path().begin();
+  for (const std::string& name : elementTexts(readText(saved), "filename"))
+    EXPECT_TRUE(shared ? name.starts_with("../") : fs::path(name).is_absolute()) << name;
+  inFolder("/", [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
+  fs::remove_all(other);
+}
+
+TEST(WorldPaths, ASaveIntoTheModelsTreeKeepsGraspItNames) {
+  const RootedWorld w = rootedWorld();
+  const World world = loadWorldFile(w.file, rootedAt(w.models));
+  const fs::path saved = w.models / "worlds" / "copy.xml";
+  fs::create_directories(saved.parent_path());
+  saveWorldFile(world, saved);
+  EXPECT_EQ(elementTexts(readText(saved), "filename"),
+            (std::vector<std::string>{"obstacles/floor.xml", "objects/box.xml",
+                                      "robots/Gripper/Gripper.xml"}));
+  expectSameWorld(loadWorldFile(saved, hermetic()), world);
+}
+
+TEST(WorldPaths, ADotNameIsLookedForBesideTheWorldFileFirst) {
+  const RootedWorld w = rootedWorld();
+  const fs::path file = w.top / "dot" / "w.xml";
+  writeText(file,
+            "<?xml version=\"1.0\" ?>\n<world>\n  <graspableBody>\n"
+            "    <filename>./objects/box.xml</filename>\n  </graspableBody>\n</world>\n");
+  // Not beside the world: found under the root, as names relative to a root always were.
+  EXPECT_EQ(loadWorldFile(file, rootedAt(w.models)).bodies().at(0).model->material,
+            Material::Glass);
+  EXPECT_THROW(loadWorldFile(file, hermetic()), Error);
+  // Beside the world: that one, whatever the root holds.
+  writeBody(w.top / "dot" / "objects", "box", "rubber");
+  EXPECT_EQ(loadWorldFile(file, rootedAt(w.models)).bodies().at(0).model->material,
+            Material::Rubber);
+}
+
+TEST(WorldPaths, NotFoundListsEachFolderOnce) {
+  const RootedWorld w = rootedWorld();
+  const fs::path folder = w.file.parent_path();
+  LoadOptions options = hermetic();
+  // The world's own folder named as a root too, spelled three ways.
+  options.roots = {folder, folder / "", folder / "." / ".." / "src", w.models};
+  writeText(w.file,
+            "<?xml version=\"1.0\" ?>\n<world>\n  <graspableBody>\n"
+            "    <filename>objects/missing.xml</filename>\n  </graspableBody>\n</world>\n");
+  try {
+    loadWorldFile(w.file, options);
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    std::vector<std::string> listed;
+    std::istringstream lines(message);
+    for (std::string line; std::getline(lines, line);)
+      if (line.starts_with("  ")) listed.push_back(fs::path(line.substr(2)).lexically_normal());
+    for (auto& path : listed)
+      if (path.size() > 1 && path.back() == '/') path.pop_back();
+    std::vector<std::string> unique = listed;
+    std::sort(unique.begin(), unique.end());
+    unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+    EXPECT_EQ(unique.size(), listed.size()) << message;
+    EXPECT_EQ(std::count(listed.begin(), listed.end(), folder.string()), 1) << message;
+    EXPECT_EQ(std::count(listed.begin(), listed.end(), w.models.string()), 1) << message;
+    EXPECT_EQ(std::count(listed.begin(), listed.end(), "/"), 1) << message;
+  }
+}
+
+TEST(BodyXml, AMeshBodyWrittenElsewhereNamesItsMeshFromItsOwnFolder) {
+  const fs::path top = test::scratchDir();
+  writeText(top / "meshes" / "cube.off", kCubeOff);
+  BodyXmlOptions options;
+  options.massGrams = 120;
+  const fs::path xml = top / "bodies" / "cube.xml";
+  writeText(xml, bodyXmlForMesh(top / "meshes" / "cube.off", xml, options));
+  EXPECT_NE(readText(xml).find(">../meshes/cube.off</geometryFile>"), std::string::npos)
+      << readText(xml);
+  const auto beside = loadBodyFile(top / "meshes" / "cube.off");
+  inFolder("/", [&] {
+    const auto body = loadBodyFile(xml);
+    EXPECT_EQ(body->mass, 120);
+    EXPECT_EQ(body->mesh->triangles.size(), beside->mesh->triangles.size());
+    EXPECT_EQ(body->cog, beside->cog);
+  });
+  // Beside the mesh, the bare file name, as GraspIt! writes it.
+  EXPECT_NE(bodyXmlForMesh(top / "meshes" / "cube.off", top / "meshes" / "cube.xml", options)
+                .find(">cube.off</geometryFile>"),
+            std::string::npos);
+}
+
+TEST(FileReference, RelativeBelowACommonFolderAbsoluteOtherwise) {
+  EXPECT_EQ(fileReference("/work/a/models/mug.xml", "/work/a/out"), "../models/mug.xml");
+  EXPECT_EQ(fileReference("/work/a/out/plan_01.xml", "/work/a/out"), "plan_01.xml");
+  EXPECT_EQ(fileReference("/work/a/mug.xml", "/tmp/plans"), "/work/a/mug.xml");
+  EXPECT_TRUE(isFileRelative("./objects/mug.xml"));
+  EXPECT_TRUE(isFileRelative("../models/mug.xml"));
+  EXPECT_FALSE(isFileRelative("models/objects/mug.xml"));
+  EXPECT_FALSE(isFileRelative("/work/mug.xml"));
+  EXPECT_FALSE(isFileRelative(".hidden/mug.xml"));
 }
 
 TEST(WorldFile, CameraOrientationIsXyzw) {

@@ -45,7 +45,10 @@ struct LoadOptions {
   std::filesystem::path srdf;
 };
 
-// The folders a world's <filename> is resolved against, in order.
+// The folders a world's <filename> is resolved against, in order, each once (a folder named
+// twice, by --root and as a parent of the world file, is searched where it first comes). Names
+// starting with `./` or `../` are looked for beside the world file before these
+// (io/graspit/world_file.hpp).
 std::vector<std::filesystem::path> searchRoots(const std::filesystem::path& world_file,
                                                const LoadOptions& options);
 

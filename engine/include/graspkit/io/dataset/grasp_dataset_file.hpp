@@ -13,6 +13,17 @@
 
 namespace graspkit {
 
+// One direction of a grasp's physical validation (dynamics/grasp_validation.hpp's
+// DirectionResult, without the failure's text): the object's weight turned along `direction`.
+struct DatasetDirection {
+  Vector3 direction = Vector3::Zero();  // unit, object frame: +x, -x, +y, -y, +z, -z in turn
+  bool held = false;
+  double slip = 0.0;     // mm: the largest displacement from the palm in the direction's run
+  double turn = 0.0;     // rad: the largest rotation relative to the palm
+  double seconds = 0.0;  // simulated: less than asked when the run ended at rest or let go
+  bool failed = false;   // the simulation itself failed (its message is not kept)
+};
+
 struct DatasetGrasp {
   Transform pregrasp = Transform::Identity();  // hand pose, open, in the object frame
   Transform grasp = Transform::Identity();     // hand pose, closed, in the object frame
@@ -25,6 +36,8 @@ struct DatasetGrasp {
   double volume = 0.0;
   bool forceClosure = false;
   int held = -1;  // dynamic validation: 1 held, 0 not, -1 not validated
+  // The validation's 6 directions (empty when not validated); held is 1 when all held.
+  std::vector<DatasetDirection> validation;
   // The closed hand's contacts on the object, object frame: points on its surface, and normals
   // pointing out of it.
   std::vector<Vector3> contactPoints;
@@ -32,6 +45,11 @@ struct DatasetGrasp {
 };
 
 struct GraspDataset {
+  // The object's body file and the hand's robot file, as this process names them (relative to
+  // the working folder, or absolute). The file stores them relative to its own folder, or
+  // absolute (base/file_reference.hpp), and loadGraspDataset gives them back absolute, so a
+  // dataset names its files from wherever it is read. (Schema 1 files stored them as batch was
+  // given them; they come back as stored.)
   std::string objectFile;
   std::string objectName;
   double objectMass = 0.0;  // g

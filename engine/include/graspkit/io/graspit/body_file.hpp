@@ -27,12 +27,16 @@ struct BodyXmlOptions {
   double scale = 1.0;        // <geometryScaling>, > 0
 };
 
-// The Body XML for `mesh_file` (written beside it: the geometry is named by file name): material,
-// mass, the CoG and inertia graspkit computes for the scaled mesh (the surface centroid, and the
-// volume integrals per unit mass, or the identity for an open mesh, as when the tags are
-// absent), the geometry file and its scaling. Numbers are written in their shortest exact form,
-// so loading the XML gives these very values. Throws graspkit::Error naming the mesh file.
-std::string bodyXmlForMesh(const std::filesystem::path& mesh_file, const BodyXmlOptions& options);
+// The Body XML for `mesh_file`, to be written as `xml_file`: material, mass, the CoG and inertia
+// graspkit computes for the scaled mesh (the surface centroid, and the volume integrals per unit
+// mass, or the identity for an open mesh, as when the tags are absent), the geometry file and
+// its scaling. The geometry is named as a Body XML reads it, relative to the XML's folder (its
+// bare file name when the XML sits beside the mesh; `../meshes/mug.iv`), or absolute when the two
+// share no folder below the file system's root (base/file_reference.hpp). Numbers are written in
+// their shortest exact form, so loading the XML gives these very values. Throws graspkit::Error
+// naming the mesh file.
+std::string bodyXmlForMesh(const std::filesystem::path& mesh_file,
+                           const std::filesystem::path& xml_file, const BodyXmlOptions& options);
 
 // Saves `mesh` as a GraspIt! body: FOLDER/NAME.off (coordinates exact) and FOLDER/NAME.xml, the
 // Body XML bodyXmlForMesh writes for it, each atomically. Returns the XML's path.

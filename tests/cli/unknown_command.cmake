@@ -1,0 +1,35 @@
+# An unknown command is named as such, with the commands listed, and exits with the usage
+# status 2; no command at all still asks for one.
+foreach(args "serve" "frobnicate;--json" "-q;serve;models/worlds/default.xml")
+  execute_process(COMMAND ${GRASPKIT} ${args} OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  RESULT_VARIABLE rc)
+  list(GET args 0 first)
+  if(first STREQUAL "-q")
+    list(GET args 1 first)
+  endif()
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "graspkit ${args}: exit ${rc}, expected 2: ${err}")
+  endif()
+  if(NOT err MATCHES "graspkit: error: unknown command '${first}'")
+    message(FATAL_ERROR "graspkit ${args} does not name the unknown command: ${err}")
+  endif()
+  foreach(command info grasp plan convert render simulate validate batch)
+    if(NOT err MATCHES "[ ,]${command}[,.]")
+      message(FATAL_ERROR "graspkit ${args} does not list '${command}': ${err}")
+    endif()
+  endforeach()
+  if(err MATCHES "A subcommand is required")
+    message(FATAL_ERROR "graspkit ${args} still says a subcommand is required: ${err}")
+  endif()
+endforeach()
+
+execute_process(COMMAND ${GRASPKIT} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 2 OR err MATCHES "unknown command")
+  message(FATAL_ERROR "graspkit alone: exit ${rc}: ${err}")
+endif()
+# A known command's own errors are unchanged.
+execute_process(COMMAND ${GRASPKIT} info --frobnicate OUTPUT_VARIABLE out ERROR_VARIABLE err
+                RESULT_VARIABLE rc)
+if(NOT rc EQUAL 2 OR err MATCHES "unknown command")
+  message(FATAL_ERROR "graspkit info --frobnicate: exit ${rc}: ${err}")
+endif()
