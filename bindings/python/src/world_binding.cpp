@@ -347,7 +347,7 @@ void bindWorldClass(py::module_& m) {
         const LoadArguments load{std::move(roots),         generic_robots,
                                  std::move(package_path),  std::move(palm),
                                  std::move(urdf_material), std::move(link_materials),
-                                 std::move(close),         std::move(srdf)};
+                                 std::move(close),         srdf.value_or(std::filesystem::path{})};
         return withWarnings([&] {
           auto handle =
               std::make_shared<WorldHandle>(host::WorldSession::load(file, load.options()));
