@@ -26,6 +26,7 @@ struct BatchOptions {
   std::uint64_t seed = 1;
   std::string shard;  // K/N
   double objectTimeout = 1800.0;
+  std::optional<int> jobs;  // objects at once in this process (default: the cores)
 };
 
 void addBatchCommand(CLI::App& app, BatchOptions& options);
