@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """`graspkit batch --jobs N`: N objects at once on one machine, the same files as one at a time.
 
-Usage: batch_jobs_test.py GRASPKIT SOURCE_DIR WORK_DIR
+Usage: batch_jobs_test.py GRASPKIT SOURCE_DIR WORK_DIR [sanitize]
+
+With `sanitize` (the ASan/UBSan build) the mpirun check is skipped, as in batch_test.py.
 
 On a few generated objects (and a broken one) with a tiny budget, each against an independent
 truth (the bytes of a `--jobs 1` run, the process table):
@@ -11,7 +13,8 @@ truth (the bytes of a `--jobs 1` run, the process table):
     than one;
   - a `--jobs 2` run killed mid-way and run again ends with the `--jobs 1` datasets and manifest,
     each good object attempted once (the broken one may have been retried);
-  - `--jobs 0`, `--jobs -1` and `--jobs x` are usage errors (exit 2), not crashes.
+  - `--jobs 0`, `--jobs -1` and `--jobs x` are usage errors (exit 2), not crashes; under mpirun
+    `--jobs 2` is refused.
 """
 
 import json
@@ -24,6 +27,7 @@ import time
 from pathlib import Path
 
 GRASPKIT, SOURCE, WORK = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
+SANITIZE = len(sys.argv) > 4 and sys.argv[4] == "sanitize"
 HAND = SOURCE / "models/robots/parallel_jaw/parallel_jaw.xml"
 COUNT = 5
 
@@ -147,4 +151,13 @@ for bad in ("0", "-1", "x"):
     run = subprocess.run(command(WORK / "bad", 1)[:-1] + [bad], capture_output=True, text=True)
     if run.returncode != 2 or "--jobs" not in run.stderr:
         fail(f"--jobs {bad} gave exit {run.returncode}: {run.stderr}")
+# Under mpirun each rank plans one object at a time: --jobs 2 is refused, not multiplied.
+mpirun = shutil.which("mpirun")
+if mpirun and not SANITIZE:
+    run = subprocess.run([mpirun, "--allow-run-as-root", "-np", "1"] + command(WORK / "mpi", 2),
+                         capture_output=True, text=True, timeout=120)
+    if run.returncode == 0 or "--jobs: under mpirun" not in run.stderr:
+        fail(f"mpirun with --jobs 2 gave exit {run.returncode}: {run.stderr}")
+else:
+    print("SKIPPED the mpirun check: mpirun is not installed, or the sanitizer build")
 print("batch --jobs: every check passed")
