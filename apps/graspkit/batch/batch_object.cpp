@@ -1,6 +1,6 @@
 // One object of graspkit batch: the hand over the object, a plan, its grasps closed, measured and
 // optionally validated, the dataset written; all in a forked child, whose one-line JSON report
-// comes back through a pipe.
+// comes back through a pipe. runObjects keeps --jobs of them in flight.
 
 #include "batch/batch_object.hpp"
 
@@ -11,9 +11,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <iostream>
+#include <memory>
 
 #include "graspkit/base/error.hpp"
 #include "graspkit/dataset/dataset_planning.hpp"
@@ -76,16 +79,20 @@ void removeEarlierTemporaries(const fs::path& dataset) {
 
 }  // namespace
 
-ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
-                        const fs::path& out, const std::function<void()>& while_waiting) {
-  const auto start = Clock::now();
+ObjectProcess::ObjectProcess(const BatchOptions& options, const fs::path& object_file,
+                             const fs::path& out)
+    : dataset_(out), limit_(options.objectTimeout), start_(Clock::now()) {
   int channel[2];
   if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
   std::cout.flush();
   std::cerr.flush();
   const pid_t parent = ::getpid();
   const pid_t child = ::fork();
-  if (child < 0) throw Error("batch: cannot start a process for an object");
+  if (child < 0) {
+    ::close(channel[0]);
+    ::close(channel[1]);
+    throw Error("batch: cannot start a process for an object");
+  }
   if (child == 0) {
     // Dies with its parent: a killed rank must not leave a child that goes on writing into the
     // output folder while the run is started again.
@@ -113,54 +120,118 @@ ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file
     std::fflush(nullptr);
     ::_exit(status);
   }
-  ::close(channel[0 + 1]);
-  std::string text;
-  bool timed_out = false;
-  const double limit = options.objectTimeout;
-  for (;;) {
-    const double left = limit - std::chrono::duration<double>(Clock::now() - start).count();
-    if (left <= 0) {
-      timed_out = true;
-      ::kill(child, SIGKILL);
-      break;
-    }
-    if (while_waiting) while_waiting();
-    pollfd p{channel[0], POLLIN, 0};
-    const double wait = while_waiting ? 0.005 : 1.0;
-    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left, wait) * 1000) + 1);
-    if (ready <= 0) continue;
-    char buffer[4096];
-    const ssize_t n = ::read(channel[0], buffer, sizeof buffer);
-    if (n <= 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
+  ::close(channel[1]);
+  child_ = child;
+  channel_ = channel[0];
+}
+
+ObjectProcess::~ObjectProcess() {
+  if (channel_ >= 0) ::close(channel_);
+  if (child_ > 0) {
+    ::kill(child_, SIGKILL);
+    ::waitpid(child_, nullptr, 0);
   }
-  ::close(channel[0]);
+}
+
+double ObjectProcess::secondsLeft() const {
+  return limit_ - std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+bool ObjectProcess::step() {
+  if (ended_) return true;
+  if (secondsLeft() <= 0) {
+    timedOut_ = ended_ = true;
+    ::kill(child_, SIGKILL);
+    return true;
+  }
+  for (;;) {
+    pollfd p{channel_, POLLIN, 0};
+    if (::poll(&p, 1, 0) <= 0) return false;
+    char buffer[4096];
+    const ssize_t n = ::read(channel_, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ended_ = true;
+      return true;
+    }
+    report_.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+ObjectOutcome ObjectProcess::finish() {
+  ::close(channel_);
+  channel_ = -1;
   int status = 0;
-  ::waitpid(child, &status, 0);
+  ::waitpid(child_, &status, 0);
+  child_ = -1;
   ObjectOutcome outcome;
-  outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (timed_out) {
-    outcome.error = fmt::format("timed out after {:g} s (--object-timeout)", limit);
+  outcome.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+  if (timedOut_) {
+    outcome.error = fmt::format("timed out after {:g} s (--object-timeout)", limit_);
   } else if (WIFSIGNALED(status)) {
     outcome.error = fmt::format("the object's process died of signal {} ({})", WTERMSIG(status),
                                 strsignal(WTERMSIG(status)));
   } else {
-    const json summary = json::parse(text, nullptr, false);
+    const json summary = json::parse(report_, nullptr, false);
     if (summary.is_discarded() || !summary.is_object()) {
       outcome.error = fmt::format("the object's process ended ({}) without a report",
                                   WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     } else if (summary.contains("error")) {
       outcome.error = summary["error"].get<std::string>();
     } else {
-      outcome.done = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(out);
+      outcome.done = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dataset_);
       outcome.grasps = summary.value("grasps", 0);
       outcome.forceClosure = summary.value("force_closure", 0);
       outcome.held = summary.value("held", 0);
       if (!outcome.done) outcome.error = "the object's process wrote no dataset file";
     }
   }
-  if (outcome.done) removeEarlierTemporaries(out);
+  if (outcome.done) removeEarlierTemporaries(dataset_);
   return outcome;
+}
+
+ObjectOutcome runObject(const BatchOptions& options, const fs::path& object_file,
+                        const fs::path& out, const std::function<void()>& while_waiting) {
+  ObjectProcess process(options, object_file, out);
+  while (!process.step()) {
+    if (while_waiting) while_waiting();
+    pollfd p{process.channel(), POLLIN, 0};
+    const double wait = std::min(process.secondsLeft(), while_waiting ? 0.005 : 1.0);
+    ::poll(&p, 1, static_cast<int>(std::max(0.0, wait) * 1000) + 1);
+  }
+  return process.finish();
+}
+
+void runObjects(const BatchOptions& options, const std::vector<ObjectJob>& objects, int parallel,
+                const std::function<void(std::size_t, const ObjectOutcome&)>& record) {
+  const auto slots = static_cast<std::size_t>(std::max(1, parallel));
+  std::vector<std::pair<std::size_t, std::unique_ptr<ObjectProcess>>> running;
+  std::size_t next = 0;
+  while (next < objects.size() || !running.empty()) {
+    while (running.size() < slots && next < objects.size()) {
+      const ObjectJob& job = objects[next++];
+      running.emplace_back(
+          job.index, std::make_unique<ObjectProcess>(options, job.objectFile, job.datasetFile));
+    }
+    std::vector<pollfd> channels;
+    double wait = 1.0;
+    for (const auto& [index, process] : running) {
+      channels.push_back({process->channel(), POLLIN, 0});
+      wait = std::min(wait, process->secondsLeft());
+    }
+    ::poll(channels.data(), channels.size(), static_cast<int>(std::max(0.0, wait) * 1000) + 1);
+    // Outcomes in the order the objects started, whichever ended first within one wait.
+    for (auto it = running.begin(); it != running.end();) {
+      if (!it->second->step()) {
+        ++it;
+        continue;
+      }
+      const std::size_t index = it->first;
+      const ObjectOutcome outcome = it->second->finish();
+      it = running.erase(it);
+      record(index, outcome);
+    }
+  }
 }
 
 }  // namespace graspkit::cli

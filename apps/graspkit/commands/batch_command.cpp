@@ -4,9 +4,12 @@
 // error on one object is recorded against it and the batch goes on; under mpirun the objects are
 // shared over the ranks (batch/batch_mpi.cpp); batch/shard.cpp chooses this process's share
 // (Slurm), batch/object_list.cpp reads the objects. What stays here: the flags, the manifest and
-// the run.
+// the run. `--jobs N` keeps N objects' processes in flight at once (each plans on one thread); the
+// manifest is written by this process alone, and holds nothing that depends on timing or order,
+// so any --jobs gives the same files. Wall times go to timings.json beside it.
 
 #include <fmt/format.h>
+#include <sched.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -19,6 +22,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "batch/batch_mpi.hpp"
 #include "batch/batch_object.hpp"
@@ -30,6 +34,8 @@
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/base/utf8.hpp"
 #include "graspkit/base/version.hpp"
+#include "graspkit/dataset/dataset_planning.hpp"
+#include "graspkit/host/plan_task.hpp"
 #include "graspkit/io/dataset/grasp_dataset_file.hpp"
 #include "support/argument_checks.hpp"
 #include "support/process_runs.hpp"
@@ -83,11 +89,12 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
       ->check(CLI::ExistingPath);
   cmd->add_option("--out", options.out, "The dataset folder")->required();
   addLoadFlags(*cmd, options.load);
+  const DatasetRequest defaults;  // one object's dataset, as the host layer plans it
   cmd->add_option("--grasps", options.grasps, "Grasps kept per object (the best list's size)")
-      ->default_val(20)
+      ->default_val(defaults.grasps)
       ->check(CLI::Range(1, 10000));
   auto* steps = cmd->add_option("--steps", options.steps, "Planner steps per object")
-                    ->default_val(40000)
+                    ->default_val(host::kDefaultPlanSteps)
                     ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
   cmd->add_option("--seconds-per-object", options.secondsPerObject,
                   "Plan each object for this long instead (not reproducible: depends on speed)")
@@ -97,11 +104,11 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
                 "Label each grasp physically (graspkit validate: 6 directions)");
   cmd->add_option("--validate-seconds", options.validateSeconds,
                   "--validate: simulated seconds per direction")
-      ->default_val(2.0)
+      ->default_val(defaults.validateSeconds)
       ->check(positiveFinite());
   cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
       ->check(seedNumber())
-      ->default_val(1);
+      ->default_val(defaults.seed);
   cmd->add_option("--shard", options.shard,
                   "K/N: take every N-th object from the K-th (default: a Slurm job array's task "
                   "from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, else all)");
@@ -109,6 +116,10 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
                   "Seconds an object may take before it is killed and recorded as failed")
       ->check(positiveFinite())
       ->default_val(1800.0);
+  cmd->add_option("--jobs,-j", options.jobs,
+                  "Objects planned at once, each in its own process on one thread (default: the "
+                  "CPUs this command may use); the files do not depend on it")
+      ->check(CLI::Range(1, 4096));
 }
 
 namespace {
@@ -147,9 +158,14 @@ class BatchRun {
   std::vector<std::size_t> prepare() {
     createOutputFolder(options_.out / "grasps");
     removeStaleTemporaries(options_.out / "grasps");
-    manifest_file_ = shard_.count == 1 ? options_.out / "manifest.json"
-                                       : options_.out / fmt::format("manifest-{}-of-{}.json",
-                                                                    shard_.index + 1, shard_.count);
+    manifest_file_ = options_.out / shardFileName("manifest", shard_.index + 1);
+    timings_file_ = options_.out / shardFileName("timings", shard_.index + 1);
+    timings_ = {{"objects", json::object()}};
+    if (fs::exists(timings_file_)) {  // informative only: a file that does not parse is replaced
+      const json previous = json::parse(readInputFile(timings_file_), nullptr, false);
+      if (previous.is_object() && previous.contains("objects") && previous["objects"].is_object())
+        timings_["objects"] = previous["objects"];
+    }
     const json settings = settingsJson(options_);
     manifest_ = {{"manifest_version", kManifestVersion},
                  {"engine_version", engineVersion()},
@@ -194,8 +210,7 @@ class BatchRun {
     const int attempts = entry.value("attempts", 0) + 1;
     entry = {{"file", files_[i].string()},
              {"status", outcome.done ? "done" : "failed"},
-             {"attempts", attempts},
-             {"seconds", outcome.seconds}};
+             {"attempts", attempts}};
     if (outcome.done) {
       ++done_;
       entry["dataset"] = (fs::path("grasps") / (names_[i] + ".h5")).string();
@@ -208,6 +223,8 @@ class BatchRun {
       failures_.push_back(fmt::format("{}: {}", names_[i], outcome.error));
     }
     writeFileAtomically(manifest_file_, manifest_.dump(2) + "\n");
+    timings_["objects"][names_[i]] = {{"seconds", outcome.seconds}, {"jobs", workers_}};
+    writeFileAtomically(timings_file_, timings_.dump(2) + "\n");
     ++ran_;
     spent_ += outcome.seconds;
     if (quiet_) return;
@@ -222,6 +239,13 @@ class BatchRun {
 
   void setWorkers(int workers) { workers_ = std::max(1, workers); }
 
+  // This share's objects still to run, as runObjects takes them.
+  std::vector<ObjectJob> jobs(const std::vector<std::size_t>& pending) const {
+    std::vector<ObjectJob> jobs;
+    for (std::size_t i : pending) jobs.push_back({i, files_[i], dataset(i)});
+    return jobs;
+  }
+
   // Once every shard has written its manifest, manifest.json gathers them (each shard's run
   // writes it as it ends; the last to end writes the whole set). A later run without --shard
   // then resumes from it.
@@ -230,18 +254,26 @@ class BatchRun {
     json merged = {{"manifest_version", kManifestVersion}, {"engine_version", engineVersion()},
                    {"settings", settingsJson(options_)},   {"shard", {{"index", 1}, {"count", 1}}},
                    {"merged_from", json::array()},         {"objects", json::object()}};
+    json timings = {{"objects", json::object()}};
     for (int k = 1; k <= shard_.count; ++k) {
-      const fs::path file = options_.out / fmt::format("manifest-{}-of-{}.json", k, shard_.count);
+      const fs::path file = options_.out / shardFileName("manifest", k);
       if (!fs::exists(file)) return;  // a shard has not run yet
       const json part = json::parse(readInputFile(file), nullptr, false);
       if (part.is_discarded() || part.value("settings", json()) != merged["settings"]) return;
       merged["merged_from"].push_back(file.filename().string());
       for (const auto& [name, entry] : part["objects"].items()) merged["objects"][name] = entry;
+      const fs::path part_timings = options_.out / shardFileName("timings", k);
+      const json times = fs::exists(part_timings)
+                             ? json::parse(readInputFile(part_timings), nullptr, false)
+                             : json();
+      if (times.is_object() && times.contains("objects") && times["objects"].is_object())
+        for (const auto& [name, entry] : times["objects"].items()) timings["objects"][name] = entry;
     }
     int done = 0;
     for (const auto& [name, entry] : merged["objects"].items())
       done += entry.value("status", "") == "done" ? 1 : 0;
     writeFileAtomically(options_.out / "manifest.json", merged.dump(2) + "\n");
+    writeFileAtomically(options_.out / "timings.json", timings.dump(2) + "\n");
     out << fmt::format("merged {} shard manifests into {}: {} of {} objects done\n", shard_.count,
                        (options_.out / "manifest.json").string(), done, files_.size());
   }
@@ -289,6 +321,12 @@ class BatchRun {
     }
   }
 
+  // "manifest.json", or "manifest-K-of-N.json" for shard K of a split run.
+  fs::path shardFileName(const std::string& stem, int k) const {
+    if (shard_.count == 1) return stem + ".json";
+    return fmt::format("{}-{}-of-{}.json", stem, k, shard_.count);
+  }
+
   json& entryOf(std::size_t i) {
     json& entry = manifest_["objects"][names_[i]];
     if (!entry.is_object()) entry = json::object();
@@ -300,23 +338,39 @@ class BatchRun {
   Shard shard_;
   std::vector<fs::path> files_;
   std::vector<std::string> names_;
-  fs::path manifest_file_;
-  json manifest_;
+  fs::path manifest_file_, timings_file_;
+  json manifest_, timings_;
   std::size_t share_ = 0, pending_ = 0, ran_ = 0;
   int done_ = 0, failed_ = 0, settled_ = 0, workers_ = 1;
   double spent_ = 0.0;
   std::vector<std::string> failures_;
 };
 
-int runSerially(BatchRun& run, const BatchOptions& options, std::ostream& out) {
-  for (std::size_t i : run.prepare())
-    run.record(i, runObject(options, run.file(i), run.dataset(i)));
+// The CPUs this process may run on: the machine's cores, or fewer under taskset or a Slurm task's
+// binding.
+int usableCores() {
+  cpu_set_t set;
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// The objects in child processes of this one, `jobs` at a time.
+int runLocally(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  const int jobs = options.jobs.value_or(usableCores());
+  const std::vector<std::size_t> pending = run.prepare();
+  run.setWorkers(std::min<int>(jobs, static_cast<int>(std::max<std::size_t>(1, pending.size()))));
+  runObjects(options, run.jobs(pending), jobs,
+             [&](std::size_t i, const ObjectOutcome& outcome) { run.record(i, outcome); });
   return run.summary(out);
 }
 
 // Every rank plans; rank 0 also keeps the manifest. An error on rank 0 before the objects are
 // shared out (a manifest with other settings) stops every rank.
 int runOverMpi(BatchRun& run, const BatchOptions& options, std::ostream& out) {
+  if (options.jobs.value_or(1) != 1)
+    throw Error(
+        "--jobs: under mpirun each rank plans one object at a time; choose the ranks "
+        "with mpirun -np instead");
   const MpiBatch mpi;
   std::vector<std::size_t> pending;
   std::string error;
@@ -345,7 +399,7 @@ int runOverMpi(BatchRun& run, const BatchOptions& options, std::ostream& out) {
 
 int runBatch(const BatchOptions& options, bool quiet, std::ostream& out) {
   BatchRun run(options, quiet);
-  return launchedByMpi() ? runOverMpi(run, options, out) : runSerially(run, options, out);
+  return launchedByMpi() ? runOverMpi(run, options, out) : runLocally(run, options, out);
 }
 
 }  // namespace graspkit::cli

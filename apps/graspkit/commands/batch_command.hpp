@@ -19,13 +19,14 @@ struct BatchOptions {
   std::filesystem::path out;
   LoadFlags load;
   int grasps = 20;
-  std::int64_t steps = 40000;
+  std::int64_t steps = 0;  // default: host::kDefaultPlanSteps, set by addBatchCommand
   std::optional<double> secondsPerObject;
   bool validate = false;
   double validateSeconds = 2.0;
   std::uint64_t seed = 1;
   std::string shard;  // K/N
   double objectTimeout = 1800.0;
+  std::optional<int> jobs;  // objects at once in this process (default: the cores)
 };
 
 void addBatchCommand(CLI::App& app, BatchOptions& options);

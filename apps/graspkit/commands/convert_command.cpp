@@ -56,7 +56,7 @@ void addConvertCommand(CLI::App& app, ConvertOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "convert",
       "Turn a legacy .egr or .vgr file into its XML form, a mesh into a Body XML beside it, or a "
-      "robot (GraspIt! XML or URDF) into URDF");
+      "robot (GraspIt! XML, URDF or MJCF) into URDF, MJCF or GraspIt! XML (--to)");
   cmd->add_option("input", options.input, ".egr, .vgr, mesh or robot file")
       ->required()
       ->check(existingFile());
