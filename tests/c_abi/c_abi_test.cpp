@@ -740,8 +740,8 @@ TEST_F(CAbiPlannerMug, PlannedGraspsRankAndReproduce) {
   options.planner = "no-such-planner";
   EXPECT_EQ(graspkit_plan_grasps(world, 0, 0, &options, &none), GRASPKIT_ERROR_INPUT);
   options.planner = "simann";
-  options.top = 0;
-  EXPECT_EQ(graspkit_plan_grasps(world, 0, 0, &options, &none), GRASPKIT_ERROR_INPUT);
+  options.top = 0;  // a bad setting: the caller's argument, not the input files
+  EXPECT_EQ(graspkit_plan_grasps(world, 0, 0, &options, &none), GRASPKIT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(graspkit_plan_grasps(world, 0, 4, nullptr, &none), GRASPKIT_ERROR_OUT_OF_RANGE);
   EXPECT_EQ(none, nullptr);
 }
@@ -874,7 +874,7 @@ TEST(CAbi, SimulateDropsTheBoxWhereTheClosedFormPutsIt) {
   EXPECT_NEAR(step.time, 1.0025, 1e-9);
   EXPECT_EQ(graspkit_world_step(world, 1.0, &step), GRASPKIT_ERROR_INPUT);  // dt > 0.05 s
   options.every = 0;
-  EXPECT_EQ(graspkit_world_simulate(world, &options, &result), GRASPKIT_ERROR_INPUT);
+  EXPECT_EQ(graspkit_world_simulate(world, &options, &result), GRASPKIT_ERROR_INVALID_ARGUMENT);
   // No hand to validate with.
   graspkit_validation validation;
   EXPECT_EQ(graspkit_validate(world, 0.5, &validation), GRASPKIT_ERROR_INPUT);

@@ -21,6 +21,6 @@ expect_output("${out}" "links: bh8_palm, bh8_chain0_link0, bh8_chain0_link1, bh8
 expect_output("${out}" "contacts [^\n]*\n +floor - mug: [1-9][0-9]* contacts" "the mug on the floor")
 
 run_example(out run report_world.lua ARGS models/worlds/gripper_box.xml)
-expect_output("${out}" "box: object, plastic, 300\\.0 g" "the box")
+expect_output("${out}" "box: graspable, plastic, 300\\.0 g" "the box")
 expect_output("${out}" "parallel_jaw: type Hand" "the gripper")
 expect_output("${out}" "DOF 1 = 0\\.0000 in \\[0\\.0000, 40\\.0000\\]" "the gripper's DOF")

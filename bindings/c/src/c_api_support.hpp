@@ -12,6 +12,7 @@
 #include "graspkit.h"
 #include "graspkit/base/error.hpp"
 #include "graspkit/grasp/grasp.hpp"
+#include "graspkit/host/invalid_setting.hpp"
 #include "graspkit/host/world_session.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/planning/planner.hpp"
@@ -65,6 +66,9 @@ graspkit_status guarded(Body&& body) noexcept {
   } catch (const Failure& f) {
     setLastError(f.status, f.message);
     return f.status;
+  } catch (const graspkit::host::InvalidSetting& e) {
+    setLastError(GRASPKIT_ERROR_INVALID_ARGUMENT, e.message(), e.where());
+    return GRASPKIT_ERROR_INVALID_ARGUMENT;
   } catch (const graspkit::Error& e) {
     setLastError(GRASPKIT_ERROR_INPUT, e.message(), e.where());
     return GRASPKIT_ERROR_INPUT;

@@ -9,6 +9,7 @@
 
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/log.hpp"
+#include "graspkit/host/invalid_setting.hpp"
 #include "python_support.hpp"
 
 namespace graspkit::python {
@@ -48,6 +49,8 @@ void bindErrors(py::module_& m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const host::InvalidSetting& e) {  // a bad argument, as Python names them
+      PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const Error& e) {
       py::object instance = py::reinterpret_borrow<py::object>(error_type)(e.what());
       instance.attr("file") = e.where().file;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/host/invalid_setting.hpp"
 #include "graspkit/model/virtual_contact.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/plugin/registry.hpp"
@@ -14,7 +15,7 @@ namespace graspkit::host {
 
 int resolveThreads(int threads) {
   if (threads < 0)
-    throw Error(fmt::format("threads {} is not valid: 0 (every core) or more", threads));
+    throw InvalidSetting(fmt::format("threads {} is not valid: 0 (every core) or more", threads));
   if (threads > 0) return threads;
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -28,7 +29,8 @@ PlanningRequest planningRequest(std::shared_ptr<const World> world, int robot, B
   if (object.kind != BodyRef::Kind::Body || object.index < 0 ||
       object.index >= static_cast<int>(world->bodies().size()))
     throw Error("the object to grasp must be a free body of the world, not a robot link");
-  if (settings.top < 1) throw Error(fmt::format("top {} is not valid: 1 or more", settings.top));
+  if (settings.top < 1)
+    throw InvalidSetting(fmt::format("top {} is not valid: 1 or more", settings.top));
   PlanningRequest request;
   request.world = std::move(world);
   request.robot = robot;
@@ -43,18 +45,19 @@ PlanningRequest planningRequest(std::shared_ptr<const World> world, int robot, B
   if (settings.planner == "simann")
     request.options["mode"] = settings.mode.value_or(kDefaultMode);
   else if (settings.mode)
-    throw Error(fmt::format("mode is a simann setting; planner '{}' has none", settings.planner));
+    throw InvalidSetting(
+        fmt::format("mode is a simann setting; planner '{}' has none", settings.planner));
   if (!settings.preset.empty()) request.options["preset"] = settings.preset;
   Registry::global().makeSearchEnergy(request.energy);  // an unknown name fails before planning
   return request;
 }
 
 PlanningBudget planningBudget(const PlanSettings& settings) {
-  if (settings.steps && settings.seconds) throw Error("give steps or seconds, not both");
+  if (settings.steps && settings.seconds) throw InvalidSetting("give steps or seconds, not both");
   if (settings.steps && *settings.steps < 1)
-    throw Error(fmt::format("steps {} is not valid: 1 or more", *settings.steps));
+    throw InvalidSetting(fmt::format("steps {} is not valid: 1 or more", *settings.steps));
   if (settings.seconds && !(*settings.seconds > 0))
-    throw Error(fmt::format("seconds {} is not valid: more than 0", *settings.seconds));
+    throw InvalidSetting(fmt::format("seconds {} is not valid: more than 0", *settings.seconds));
   PlanningBudget budget;
   if (settings.seconds)
     budget.seconds = *settings.seconds;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/host/invalid_setting.hpp"
 #include "graspkit/host/subject.hpp"
 #include "graspkit/model/world.hpp"
 
@@ -11,9 +12,9 @@ namespace graspkit::host {
 SimulationOutcome simulateWorld(World& world, const SimulationSettings& settings,
                                 const std::function<void(const World&)>& frame) {
   if (settings.every < 1)
-    throw Error(fmt::format("every {} is not valid: 1 step or more", settings.every));
+    throw InvalidSetting(fmt::format("every {} is not valid: 1 step or more", settings.every));
   if (settings.gravity) {
-    if (!settings.gravity->allFinite()) throw Error("gravity must be finite");
+    if (!settings.gravity->allFinite()) throw InvalidSetting("gravity must be finite");
     world.setGravity(*settings.gravity);
   }
   if (settings.autograsp) setClosingTargets(world, defaultHand(world));

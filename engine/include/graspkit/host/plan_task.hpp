@@ -47,10 +47,11 @@ int resolveThreads(int threads);
 // The planning request the settings describe, on `world` (not changed: planners work on clones).
 // Checks everything that can be checked before planning: the robot and object, the energy's
 // name, the mode (only simann has one), the thread count and the best list's size. Throws
-// graspkit::Error naming the setting.
+// InvalidSetting (host/invalid_setting.hpp) naming a bad setting, graspkit::Error for an unknown
+// energy or a robot or object the world does not have.
 PlanningRequest planningRequest(std::shared_ptr<const World> world, int robot, BodyRef object,
                                 const PlanSettings& settings);
-// The budget the settings describe. Throws graspkit::Error for steps and seconds both given, or
+// The budget the settings describe. Throws InvalidSetting for steps and seconds both given, or
 // either not positive.
 PlanningBudget planningBudget(const PlanSettings& settings);
 
