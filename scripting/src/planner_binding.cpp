@@ -470,14 +470,9 @@ std::vector<PlannedGrasp> finishedGrasps(lua_State* L, BoundPlanner& bound, bool
   PlannerCall call(L, bound);
   std::vector<PlannedGrasp> grasps = bound.planner->best();
   if (!autograsp) return grasps;
-  // One grasp per finishGrasps call: it closes a list's grasps one after another in one world,
-  // where the breakaway state a closing leaves behind changes how the next grasp closes. Alone,
-  // each grasp closes from the world as the script gave it.
-  for (PlannedGrasp& grasp : grasps) {
-    std::vector<PlannedGrasp> one{std::move(grasp)};
-    finishGrasps(bound.request, one, 1);
-    grasp = std::move(one.front());
-  }
+  // finishGrasps closes each grasp on a fresh clone of the world the script gave, as
+  // `graspkit plan` does; one thread, since a Lua energy may be called from here.
+  finishGrasps(bound.request, grasps, 1);
   return grasps;
 }
 
