@@ -721,7 +721,14 @@ GraspDataset readImage(const std::string& bytes, const fs::path& file) {
 // What the child may take: a dataset's arrays hold up to the 1 GiB of its file, and libhdf5 its
 // working copies beside them.
 constexpr std::size_t kChildMemory = std::size_t{4} << 30;
-constexpr std::chrono::seconds kChildTime{600};
+
+// How long the child may read: libhdf5 reads a sound dataset at hundreds of MB/s (a 100-grasp
+// file in milliseconds), but a corrupt global heap can make it loop for ever (the fuzz target
+// found H5HG_read spinning on a variable-length string attribute). So the bound grows with the
+// file: 5 s, and a second more per 32 MiB (37 s for the largest file graspkit reads).
+std::chrono::seconds childTime(std::size_t bytes) {
+  return std::chrono::seconds{5 + static_cast<long>(bytes >> 25)};
+}
 
 }  // namespace
 
@@ -758,8 +765,8 @@ GraspDataset loadGraspDataset(const fs::path& file) {
   checkHdf5Image(bytes, file);
   // libhdf5 trusts more of a file than can be checked here: it reads in a child process, and a
   // crash or a runaway there is an error naming the file (io/dataset/contained_read.hpp).
-  return unpack(
-      readInChild([&] { return pack(readImage(bytes, file)); }, file, kChildTime, kChildMemory));
+  return unpack(readInChild([&] { return pack(readImage(bytes, file)); }, file,
+                            childTime(bytes.size()), kChildMemory));
 }
 
 }  // namespace graspkit
