@@ -576,6 +576,8 @@ constexpr int kMaxControllerPasses = 8;
 constexpr double kClosingTolerance = 1.0;
 // Siconos' relative residual sought, and the sweeps allowed: fewer with push-out requests, which
 // a solver that has not nearly met them by then (residual 1e-5) is taken not to be able to meet.
+// Those are solved by NSGS alone: Newton's method meets push-out requests NSGS gives up on (a
+// squeeze whose object is wedged), and the object is then pushed out of a held grasp.
 // The residual is relative to the free motion, which a saturated finger makes large: at 1e-8 a
 // contact kept from closing still closed at ~3 um/s, enough to close a held grasp's last
 // microns within a 2 s pull; 1e-10 costs a held glass 4 more sweeps a step.
@@ -633,12 +635,14 @@ dynamics::FrictionContactSolution solveContacts(const World& world, const Constr
     W(row + 1, row + 1) = W(row + 2, row + 2) = 1.0;
   }
   const VectorX q = constraints.G * motion.velocity + offset;
-  dynamics::FrictionContactSolution solution =
-      dynamics::solveFrictionContact(W, q, constraints.mu, start, kSolverTolerance, max_iterations);
+  const bool pushes_out = offset.minCoeff() < 0.0;
+  dynamics::FrictionContactSolution solution = dynamics::solveFrictionContact(
+      W, q, constraints.mu, start, kSolverTolerance, max_iterations,
+      pushes_out ? dynamics::ContactSolverMethod::GaussSeidel
+                 : dynamics::ContactSolverMethod::NewtonThenGaussSeidel);
   report.solverIterations += solution.iterations;
   report.solverError = solution.error;
   // Push-out requests may be more than the bodies can do; the caller then asks for less.
-  const bool pushes_out = offset.minCoeff() < 0.0;
   if (!solution.solved && !pushes_out) {
     throw DynamicsError(fmt::format("at t = {:.4f} s, the contact problem ({} contacts, {} "
                                     "joint limits) could not be solved: Siconos {} stopped at "
