@@ -576,6 +576,9 @@ constexpr int kMaxControllerPasses = 8;
 constexpr double kClosingTolerance = 1.0;
 // Siconos' relative residual sought, and the sweeps allowed: fewer with push-out requests, which
 // a solver that has not nearly met them by then (residual 1e-5) is taken not to be able to meet.
+// A squeeze asks for push-out nearly every step and NSGS almost never meets it (measured over a
+// box's 10 validations: 135 of 23,400 met, all within 100 sweeps), so 100 sweeps, not 300. Not
+// 30: the 25 met between 30 and 100 sweeps decide whether two of those grasps hold.
 // Those are solved by NSGS alone: Newton's method meets push-out requests NSGS gives up on (a
 // squeeze whose object is wedged), and the object is then pushed out of a held grasp.
 // The residual is relative to the free motion, which a saturated finger makes large: at 1e-8 a
@@ -583,7 +586,7 @@ constexpr double kClosingTolerance = 1.0;
 // microns within a 2 s pull; 1e-10 costs a held glass 4 more sweeps a step.
 constexpr double kSolverTolerance = 1e-10;
 constexpr int kMaxSolverIterations = 5000;
-constexpr int kPushOutIterations = 300;
+constexpr int kPushOutIterations = 100;
 
 // How much faster than its gap allows any contact or limit closes at velocity v (mm/s or rad/s;
 // 0 when none does).

@@ -135,8 +135,16 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
     return solution;
   }
   solution.solver = "NSGS";
+  // Newton's method stalls (100 iterations) on about 1 problem in 20 of a squeezed grasp, most
+  // within 1e-9 of the tolerance: NSGS from its answer then needs tens of sweeps, not thousands.
+  const bool newton_tried = method == ContactSolverMethod::NewtonThenGaussSeidel;
+  const VectorX from = newton_tried && solution.reaction.size() == q.size() &&
+                               solution.reaction.allFinite() &&
+                               plausible(W, q, start, solution.reaction)
+                           ? VectorX(solution.reaction)
+                           : start;
   solution.solved =
-      runSolver(SICONOS_FRICTION_3D_NSGS, max_iterations, tolerance, W, q, mu, start, solution);
+      runSolver(SICONOS_FRICTION_3D_NSGS, max_iterations, tolerance, W, q, mu, from, solution);
   // Short of the tolerance, an answer whose residual is small is still good: Siconos' error is
   // relative to the problem's scale.
   if (!solution.solved) {

@@ -17,8 +17,13 @@ class World;
 struct ValidationRequest {
   double seconds = 2.0;  // per direction
   double dt = kDefaultTimeStep;
-  // The squeeze settles this long, without gravity, before any direction is tried.
-  double settleSeconds = 0.25;
+  // The squeeze settles without gravity before any direction is tried, until the hand and the
+  // object are at rest (as below), at most this long. The fingers close on: a breakaway finger's
+  // distal link keeps turning to its limit at the DOF's speed (Barrett: about 1.5 s), and a pull
+  // that began while they moved could not end at rest before they stopped, so every held
+  // direction ran its whole time. The settle ends at rest whatever stopAtRest says, so that a
+  // run with stopAtRest false tries each direction from the same squeeze.
+  double settleSeconds = 2.0;
   double maxSlip = 5.0;                              // mm, the object's travel relative to the palm
   double maxTurn = 15.0 * 3.14159265358979 / 180.0;  // rad
   double gravity = kStandardGravity;                 // mm/s^2, the size of the pull
