@@ -37,7 +37,8 @@ std::span<const EnumName<WrenchSpaceType>> enumNames(std::type_identity<WrenchSp
 // epsilon can differ by orders of magnitude; with exact options ("Qx", "Qt") it is no faster.
 // So GraspIt and SkipNonForceClosure run qhull with GraspIt!'s options whenever they build a
 // hull; they differ in when they skip it. NearestFacet builds no hull at all and gives the exact
-// epsilon only (timings of all three in bench/wrench_space_bench.cpp).
+// epsilon only; ExactHull is qhull's exact hull (timings of all four in
+// bench/wrench_space_bench.cpp).
 enum class HullMethod {
   // qhull on every wrench point with GraspIt!'s options "Qx QJ C-0.0001" (its output options
   // "Pp n" only affect printing): exact pre-merges, joggled input, centrum radius 1e-4.
@@ -56,8 +57,8 @@ enum class HullMethod {
   // `hyperplanes` holds that one facet when the origin is inside (so epsilonQuality() is the
   // exact epsilon); when the origin is outside, no facet and originOutside is set, as for
   // SkipNonForceClosure. Volume and area are NaN (unknown). It agrees with qhull's exact hull
-  // ("Qt") to rounding, not with
-  // GraspIt!'s merged one, which can differ on near-degenerate grasps.
+  // ("Qt") to rounding, not with GraspIt!'s merged one, which can differ on near-degenerate
+  // grasps. In 5 and 6 dimensions Gilbert's iteration runs first, as for SkipNonForceClosure.
   NearestFacet,
   // qhull on every wrench point with the exact options "Qt" (no joggle, no centrum radius, the
   // merged facets triangulated): the exact hull with its volume, which NearestFacet is checked
