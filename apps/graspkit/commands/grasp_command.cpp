@@ -156,9 +156,9 @@ void printText(const json& j, std::ostream& out) {
     out << fmt::format("the hand started in collision ({} pairs)\n", j["start_collisions"].size());
   out << "dof values:";
   for (const auto& v : j["dof_values"]) out << fmt::format(" {:.6f}", v.get<double>());
-  out << fmt::format("\nepsilon {:.7g}\nvolume {:.7g}\nforce closure {}\n",
-                     j["epsilon"].get<double>(), j["volume"].get<double>(),
-                     j["force_closure"].get<bool>() ? "yes" : "no");
+  out << fmt::format("\nepsilon {:.7g}  [{}]\nvolume {:.7g}\nforce closure {}\n",
+                     j["epsilon"].get<double>(), j["epsilon_method"].get<std::string>(),
+                     j["volume"].get<double>(), j["force_closure"].get<bool>() ? "yes" : "no");
   if (j.contains("wrench_space_failure"))
     out << "wrench space: " << j["wrench_space_failure"].get<std::string>() << "\n";
 }
@@ -204,6 +204,8 @@ int runGrasp(const GraspOptions& options, std::ostream& out) {
   request.wrenchSpace.type = gws;
   Grasp grasp = analyzeGrasp(world, robot, object, contacts, request);
   json j = graspJson(world, grasp);
+  // GraspIt!'s qhull options: `grasp` promises GraspIt!'s figures.
+  j["epsilon_method"] = epsilonMethodName(request.wrenchSpace.method);
   j["start_collisions"] = start_collisions;
   if (closed) j["autograsp"] = {{"ended", nameOf(closed->end)}, {"steps", closed->iterations}};
   if (options.json) {

@@ -17,11 +17,14 @@
 #include "graspkit/base/version.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
 #include "graspkit/grasp/autograsp.hpp"
+#include "graspkit/grasp/grasp.hpp"
+#include "graspkit/grasp/wrench_space.hpp"
 #include "graspkit/host/plan_task.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/virtual_contact.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/planning/planner.hpp"
+#include "graspkit/planning/search_energy.hpp"
 #include "support/argument_checks.hpp"
 #include "support/progress_reporter.hpp"
 #include "support/robot_choice.hpp"
@@ -108,6 +111,10 @@ void printTable(const json& result, std::ostream& out) {
       result["steps"].get<std::int64_t>(), result["seconds"].get<double>(),
       result["steps_per_second"].get<double>(), result["threads"].get<int>(),
       result["seed"].get<std::uint64_t>());
+  out << "epsilon by " << result["epsilon_method"].get<std::string>();
+  if (result.contains("energy_epsilon_method"))
+    out << "; the energy's epsilon by " << result["energy_epsilon_method"].get<std::string>();
+  out << "\n";
   const bool validated = result.value("validated", false);
   out << fmt::format("{:>4} {:>11} {:>10} {:>10} {:>8} {:>3} {}  {:<30} {}\n", "rank", "energy",
                      "epsilon", "volume", "contacts", "fc", validated ? " held" : "",
@@ -357,6 +364,10 @@ int runPlan(const PlanOptions& options, bool quiet, std::ostream& out) {
     forceClosure += g.forceClosure ? 1 : 0;
   }
   result["force_closure_count"] = forceClosure;
+  // The grasps are measured as GraspIt! measures them; the energy may use another epsilon.
+  result["epsilon_method"] = epsilonMethodName(GraspRequest{}.wrenchSpace.method);
+  if (const std::string_view m = energyEpsilonMethod(request.energy); !m.empty())
+    result["energy_epsilon_method"] = m;
   if (options.validate) addValidation(request, run.grasps, options.validateSeconds, quiet, result);
   if (!options.out.empty()) saveOut(request, run.grasps, result, options.out);
   if (options.json)

@@ -143,7 +143,8 @@ double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) 
   if (wrenches.size() < 3) return 1.0;
   WrenchSpaceOptions options;
   options.dimensions = {true, true, true, false, false, false};
-  options.method = HullMethod::SkipNonForceClosure;
+  // The planner's hottest quality: the nearest facet alone, not the whole hull.
+  options.method = HullMethod::NearestFacet;
   return -epsilonQuality(graspWrenchSpace(wrenches, options));
 }
 
@@ -228,6 +229,15 @@ std::string canonicalEnergyName(std::string_view name) {
   };
   auto it = graspitNames.find(name);
   return it == graspitNames.end() ? std::string(name) : it->second;
+}
+
+std::string_view energyEpsilonMethod(std::string_view name) {
+  const std::string canonical = canonicalEnergyName(name);
+  if (canonical == "potential-quality" || canonical == "guided-potential-quality")
+    return epsilonMethodName(HullMethod::NearestFacet);
+  if (canonical == "autograsp-quality" || canonical == "strict-autograsp")
+    return epsilonMethodName(GraspRequest{}.wrenchSpace.method);
+  return {};
 }
 
 std::vector<std::pair<std::string, SearchEnergyFactory>> builtinSearchEnergies() {

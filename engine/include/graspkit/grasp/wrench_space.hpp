@@ -20,6 +20,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 #include "graspkit/base/enum_names.hpp"
 
@@ -34,8 +35,10 @@ std::span<const EnumName<WrenchSpaceType>> enumNames(std::type_identity<WrenchSp
 // How the wrench space is computed. qhull's merging ("C-0.0001") decides GraspIt!'s facets and
 // volume: without it the volume comes out about 1e-4 larger and, on near-degenerate grasps,
 // epsilon can differ by orders of magnitude; with exact options ("Qx", "Qt") it is no faster.
-// So every method here runs qhull with GraspIt!'s options whenever it builds a hull; they
-// differ in when they skip it (timings in bench/wrench_space_bench.cpp).
+// So GraspIt and SkipNonForceClosure run qhull with GraspIt!'s options whenever they build a
+// hull; they differ in when they skip it. NearestFacet builds no hull at all and gives the exact
+// epsilon only; ExactHull is qhull's exact hull (timings of all four in
+// bench/wrench_space_bench.cpp).
 enum class HullMethod {
   // qhull on every wrench point with GraspIt!'s options "Qx QJ C-0.0001" (its output options
   // "Pp n" only affect printing): exact pre-merges, joggled input, centrum radius 1e-4.
@@ -48,7 +51,25 @@ enum class HullMethod {
   // GraspWrenchSpace::originOutside is set (volume and area are then unknown, NaN).
   // Otherwise it builds the hull exactly as GraspIt does.
   SkipNonForceClosure,
+  // For epsilon and force closure only, where nothing is compared with GraspIt!'s figures (the
+  // planner's potential-quality energies): the facet of the exact hull nearest the origin,
+  // found without building the whole hull (nearestHullFacet(), grasp/nearest_facet.hpp).
+  // `hyperplanes` holds that one facet when the origin is inside (so epsilonQuality() is the
+  // exact epsilon); when the origin is outside, no facet and originOutside is set, as for
+  // SkipNonForceClosure. Volume and area are NaN (unknown). It agrees with qhull's exact hull
+  // ("Qt") to rounding, not with GraspIt!'s merged one, which can differ on near-degenerate
+  // grasps. In 5 and 6 dimensions Gilbert's iteration runs first, as for SkipNonForceClosure.
+  NearestFacet,
+  // qhull on every wrench point with the exact options "Qt" (no joggle, no centrum radius, the
+  // merged facets triangulated): the exact hull with its volume, which NearestFacet is checked
+  // against (tests/unit/grasp/nearest_facet_test.cpp, bench/wrench_space_bench.cpp).
+  ExactHull,
 };
+
+// How a method computes epsilon, for outputs that print it beside the epsilon:
+// "qhull Qx QJ C-0.0001 (GraspIt!)" for GraspIt and SkipNonForceClosure, "nearest facet
+// (exact)" for NearestFacet, "qhull Qt (exact)" for ExactHull.
+std::string_view epsilonMethodName(HullMethod method);
 
 // The margin, in wrench units (times the largest wrench norm when that exceeds 1), by which
 // SkipNonForceClosure must find the origin outside the wrenches: ten times qhull's centrum
@@ -84,8 +105,8 @@ struct GraspWrenchSpace {
   // dimensions, or qhull's own first error line, e.g. a flat wrench set) and the hull is empty.
   bool built = false;
   std::string failure;
-  // HullMethod::SkipNonForceClosure found the origin clearly outside the wrenches and built
-  // no hull: not force closure, epsilon -1, volume and area NaN (unknown).
+  // HullMethod::SkipNonForceClosure or NearestFacet found the origin outside the wrenches and
+  // built no hull: not force closure, epsilon -1, volume and area NaN (unknown).
   bool originOutside = false;
   std::vector<WrenchHyperplane> hyperplanes;
   double volume = 0.0;         // in the used dimensions, in (unit force)^d

@@ -6,7 +6,10 @@
 //   contact                   mean over virtual contacts of |d| + 50 (1 - n.d/|d|), d from the
 //                             contact to the nearest object point, n the contact's normal
 //   potential-quality         -epsilon of a force-only wrench space of the virtual contacts,
-//                             each scaled by how near it is; +1 with fewer than 3 near contacts
+//                             each scaled by how near it is; +1 with fewer than 3 near contacts.
+//                             Epsilon of the exact hull by HullMethod::NearestFacet, not of
+//                             GraspIt!'s merged qhull hull (they differ only on near-degenerate
+//                             wrench sets, and nothing compares this energy with GraspIt!'s)
 //   guided-potential-quality  potential quality where it is <= 0, contact energy elsewhere
 //   autograsp-quality         close the hand, then -(30 volume + 100 max(epsilon, 0))
 //   strict-autograsp          approach up to 30 mm keeping the pose only if the palm touches,
@@ -51,6 +54,11 @@ using SearchEnergyFactory = std::function<std::unique_ptr<SearchEnergy>()>;
 // Our name for one of GraspIt!'s energy factory names ("CONTACT_ENERGY" -> "contact"), or the
 // name unchanged.
 std::string canonicalEnergyName(std::string_view name);
+
+// How a built-in energy computes the epsilon it uses (epsilonMethodName() in
+// grasp/wrench_space.hpp): "nearest facet (exact)" for the potential-quality energies, GraspIt!'s
+// qhull for the autograsp ones; empty for the contact energy and any other name.
+std::string_view energyEpsilonMethod(std::string_view name);
 
 // GraspIt!'s energies under graspkit's names (contact, potential-quality, ...), with their
 // factories: the Registry (plugin/registry.hpp) starts with them, and plugins add more there.
