@@ -156,9 +156,11 @@ void printText(const json& j, std::ostream& out) {
     out << fmt::format("the hand started in collision ({} pairs)\n", j["start_collisions"].size());
   out << "dof values:";
   for (const auto& v : j["dof_values"]) out << fmt::format(" {:.6f}", v.get<double>());
-  out << fmt::format("\nepsilon {:.7g}  [{}]\nvolume {:.7g}\nforce closure {}\n",
-                     j["epsilon"].get<double>(), j["epsilon_method"].get<std::string>(),
-                     j["volume"].get<double>(), j["force_closure"].get<bool>() ? "yes" : "no");
+  // The method on a line of its own: scripts and the other front ends read the figures' lines.
+  out << fmt::format("\nepsilon {:.7g}\nvolume {:.7g}\nforce closure {}\nepsilon by {}\n",
+                     j["epsilon"].get<double>(), j["volume"].get<double>(),
+                     j["force_closure"].get<bool>() ? "yes" : "no",
+                     j["epsilon_method"].get<std::string>());
   if (j.contains("wrench_space_failure"))
     out << "wrench space: " << j["wrench_space_failure"].get<std::string>() << "\n";
 }

@@ -18,6 +18,8 @@ namespace graspkit::dynamics {
 namespace {
 
 constexpr double kAcceptableError = 1e-5;
+// NSGS sweeps before Newton's method takes over from NSGS's answer.
+constexpr int kSweepsBeforeNewton = 100;
 
 struct OptionsDeleter {
   void operator()(SolverOptions* options) const { solver_options_delete(options); }
@@ -86,12 +88,11 @@ bool plausible(const MatrixX& W, const VectorX& q, const VectorX& start, const V
   return reaction.cwiseAbs().maxCoeff() <= kSlack * bound;
 }
 
-// The nonsmooth Newton method on the Alart-Curnier function (NSN-AC): a few iterations where
-// NSGS needs thousands of sweeps, since a held grasp couples its contacts through stiff fingers
-// (measured on validation's problems: 5 Newton steps against 5000 sweeps that stop short of
-// 1e-10, 0.07 ms against 19 ms). Rigid bodies with redundant contacts make W singular, which its
-// LU cannot factorise; a diagonal of 1e-14 of W's largest lets it, and the answer is accepted
-// only when its residual on the unchanged problem meets the tolerance.
+// The nonsmooth Newton method on the Alart-Curnier function (NSN-AC) from `start`: a few
+// iterations where NSGS needs thousands of sweeps on a squeeze (solveFrictionContact's comment).
+// Rigid bodies with redundant contacts make W singular, which its LU cannot factorise; a
+// diagonal of 1e-14 of W's largest lets it, and the answer is accepted only when its residual on
+// the unchanged problem meets the tolerance.
 bool runNewton(double tolerance, const MatrixX& W, VectorX& q, VectorX& mu, const VectorX& start,
                FrictionContactSolution& solution) {
   constexpr double kRegularisation = 1e-14;
@@ -128,23 +129,31 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
   MatrixX W = W_in;
   VectorX q = q_in;
   VectorX mu = mu_in;
-  solution.solver = "NSN-AC";
-  if (method == ContactSolverMethod::NewtonThenGaussSeidel &&
-      runNewton(tolerance, W, q, mu, start, solution)) {
+  solution.solver = "NSGS";
+  const int first_sweeps = method == ContactSolverMethod::NewtonThenGaussSeidel
+                               ? std::min(max_iterations, kSweepsBeforeNewton)
+                               : max_iterations;
+  solution.solved =
+      runSolver(SICONOS_FRICTION_3D_NSGS, first_sweeps, tolerance, W, q, mu, start, solution);
+  if (solution.solved || first_sweeps == max_iterations) {
+    if (!solution.solved)
+      solution.solved = solution.reaction.allFinite() && solution.error < kAcceptableError;
+    return solution;
+  }
+  // NSGS is slow to finish here: Newton's method from where it got, which converges to the
+  // answer near it (among the many a rigid squeeze admits, the one NSGS was heading for).
+  const VectorX near = solution.reaction.allFinite() ? VectorX(solution.reaction) : start;
+  const int sweeps = solution.iterations;
+  if (runNewton(tolerance, W, q, mu, near, solution)) {
+    solution.solver = "NSGS+NSN-AC";
+    solution.iterations += sweeps;
     solution.solved = true;
     return solution;
   }
   solution.solver = "NSGS";
-  // Newton's method stalls (100 iterations) on about 1 problem in 20 of a squeezed grasp, most
-  // within 1e-9 of the tolerance: NSGS from its answer then needs tens of sweeps, not thousands.
-  const bool newton_tried = method == ContactSolverMethod::NewtonThenGaussSeidel;
-  const VectorX from = newton_tried && solution.reaction.size() == q.size() &&
-                               solution.reaction.allFinite() &&
-                               plausible(W, q, start, solution.reaction)
-                           ? VectorX(solution.reaction)
-                           : start;
-  solution.solved =
-      runSolver(SICONOS_FRICTION_3D_NSGS, max_iterations, tolerance, W, q, mu, from, solution);
+  solution.solved = runSolver(SICONOS_FRICTION_3D_NSGS, max_iterations - first_sweeps, tolerance, W,
+                              q, mu, near, solution);
+  solution.iterations += sweeps;
   // Short of the tolerance, an answer whose residual is small is still good: Siconos' error is
   // relative to the problem's scale.
   if (!solution.solved) {

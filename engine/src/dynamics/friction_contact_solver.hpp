@@ -20,13 +20,19 @@ struct FrictionContactSolution {
 
 enum class ContactSolverMethod { NewtonThenGaussSeidel, GaussSeidel };
 
-// With NewtonThenGaussSeidel, Siconos' global nonsmooth Newton method on the Alart-Curnier function
-// (NSN-AC) first, on W with a diagonal of 1e-14 of its largest so that the rank-deficient Delassus
-// matrices of rigid bodies with redundant contacts factorise; its answer is kept when its residual
-// on the unchanged problem meets the tolerance. Otherwise Siconos' nonsmooth Gauss-Seidel (NSGS)
-// with its default one-contact Newton solver. On barrettGlassDyn and the mug grasps NSGS converges
-// in tens to hundreds of sweeps, but a grasp squeezed under validation's pull needs its full 5000
-// and stops short of 1e-10, where NSN-AC takes about 5 Newton steps (0.07 ms against 19 ms).
+// Siconos' nonsmooth Gauss-Seidel (NSGS) with its default one-contact Newton solver, from
+// `start`. With NewtonThenGaussSeidel, when 100 sweeps have not met the tolerance, Siconos'
+// global nonsmooth Newton method on the Alart-Curnier function (NSN-AC) goes on from NSGS's
+// answer, on W with a diagonal of 1e-14 of its largest so that the rank-deficient Delassus
+// matrices of rigid bodies with redundant contacts factorise; its answer is kept when its
+// residual on the unchanged problem meets the tolerance and its impulses are of a size the
+// problem can ask for; otherwise NSGS goes on to `max_iterations` sweeps in all. On
+// barrettGlassDyn and the mug grasps NSGS converges in tens to hundreds of sweeps, but a grasp
+// squeezed under validation's pull took its whole 5000 and stopped short of 1e-10, where Newton
+// needs about 5 iterations. Newton starts from NSGS's answer, not from scratch, because a rigid
+// squeeze admits many answers and the one Newton finds from scratch differs from NSGS's enough
+// to change which grasps hold: from NSGS's answer it lands on the nearby one (measured on 10
+// validated grasps of a generated object: 9 of 10 labels as with NSGS alone, against 8 of 10).
 // `start` is the first guess of the reactions (a warm start from the last step), zero if empty.
 // At most `max_iterations` NSGS sweeps; a solution short of the tolerance is still accepted
 // when its residual is below 1e-5.

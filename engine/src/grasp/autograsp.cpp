@@ -252,7 +252,8 @@ std::span<const EnumName<MotionEnd>> enumNames(std::type_identity<MotionEnd>) {
       {MotionEnd::Contact, "contact"},
       {MotionEnd::IterationLimit, "iteration_limit"},
       {MotionEnd::InterpolationError, "interpolation_error"},
-      {MotionEnd::NoContact, "no_contact"}};
+      {MotionEnd::NoContact, "no_contact"},
+      {MotionEnd::Stopped, "stopped"}};
   return kNames;
 }
 
@@ -283,6 +284,7 @@ AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions
   }
   motion.stopAtContact = options.stopAtContact;
   motion.maxIterations = options.maxIterations;
+  motion.keepGoing = options.keepGoing;
   return moveDofsToContacts(world, robot, motion);
 }
 
@@ -302,6 +304,10 @@ AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& mot
   for (;;) {
     if (result.iterations >= motion.maxIterations) {
       result.end = MotionEnd::IterationLimit;
+      break;
+    }
+    if (motion.keepGoing && !motion.keepGoing()) {
+      result.end = MotionEnd::Stopped;
       break;
     }
     if (!closing.step(from, to)) break;

@@ -42,9 +42,12 @@ PlannerProgress progressOf(const Planner& planner, double seconds,
 
 }  // namespace
 
-void finishGrasp(PlanningScene& scene, PlannedGrasp& grasp) {
+bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp,
+                 const std::function<bool()>& keepGoing) {
   scene.setHand(grasp.pose, grasp.dofs);
-  autoGrasp(scene.world(), scene.robot());
+  AutoGraspOptions close;
+  close.keepGoing = keepGoing;
+  if (autoGrasp(scene.world(), scene.robot(), close).end == MotionEnd::Stopped) return false;
   Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
   grasp.closed = scene.handConfiguration();
   grasp.epsilon = measured.epsilon;
@@ -53,6 +56,7 @@ void finishGrasp(PlanningScene& scene, PlannedGrasp& grasp) {
   grasp.contactList = std::move(measured.contacts);
   grasp.forceClosure = measured.forceClosure;
   grasp.evaluated = true;
+  return true;
 }
 
 bool betterGrasp(const PlannedGrasp& a, const PlannedGrasp& b) {

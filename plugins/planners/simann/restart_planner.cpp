@@ -217,6 +217,7 @@ std::optional<std::vector<PlannedGrasp>> RestartPlanner::restart(
     CentringSettings centring = settings_.centring;
     centring.keepGoing = keepGoing;
     closeCentred(*scene, grasp, centring);
+    if (!grasp.evaluated) return std::nullopt;  // stopped inside its close
     grasps.push_back(std::move(grasp));
   }
   return grasps;

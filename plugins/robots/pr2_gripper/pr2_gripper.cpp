@@ -73,7 +73,7 @@ class Pr2Gripper2010 final : public graspkit::RobotType {
     const bool compliant =
         options.speedFactor > 0 && !options.stopAtContact && !handCollides(world, robot);
     AutoGraspResult first = graspkit::genericAutoGrasp(world, robot, options);
-    if (!compliant) return first;
+    if (!compliant || first.end == graspkit::MotionEnd::Stopped) return first;
 
     const BodyRef tips[] = {BodyRef::robotLink(robot, {0, 1}), BodyRef::robotLink(robot, {1, 1})};
     const bool touching[] = {touches(first.contacts, tips[0]), touches(first.contacts, tips[1])};
@@ -98,6 +98,7 @@ class Pr2Gripper2010 final : public graspkit::RobotType {
       motion.steps.push_back(velocity * 0.01);  // GraspIt!'s autograsp step
     }
     motion.maxIterations = options.maxIterations;
+    motion.keepGoing = options.keepGoing;
     motion.afterDofChange = [&held, &tip](World& w, int r) {
       // base' * tip_in_base = held, with tip_in_base = base^-1 * tip_now.
       const Transform now = graspkit::bodyPose(w, tip);

@@ -88,6 +88,7 @@ class RobotIQ final : public graspkit::RobotType {
     const double step = std::abs(options.speedFactor) * kStepScale;
     graspkit::DofMotion motion;
     motion.stopAtContact = true;
+    motion.keepGoing = options.keepGoing;
     motion.targets.assign(kDofCount, 0.0);
     motion.steps.assign(kDofCount, 0.0);  // DOFs 3 and 7 hold
     for (const Finger& f : kFingers) {
@@ -100,7 +101,8 @@ class RobotIQ final : public graspkit::RobotType {
     for (int round = 1;; ++round) {
       const AutoGraspResult r = graspkit::moveDofsToContacts(world, robot, motion);
       total.iterations += r.iterations;
-      if (r.end == graspkit::MotionEnd::InterpolationError) total.end = r.end;
+      if (r.end == graspkit::MotionEnd::InterpolationError || r.end == graspkit::MotionEnd::Stopped)
+        total.end = r.end;
       const std::vector<LinkRef> touching = touchingLinks(r.contacts, robot);
       const auto values = world.robot(robot).dofValues();
       auto touches = [&](const Finger& f, int phalanx) {
@@ -116,7 +118,9 @@ class RobotIQ final : public graspkit::RobotType {
         hold(motion, f.firstDof + 1, values);
         target(motion, f.firstDof + 2, model.dofs[f.firstDof + 2].max, step);
       }
-      if (r.iterations == 0 || r.end == graspkit::MotionEnd::InterpolationError) break;
+      if (r.iterations == 0 || r.end == graspkit::MotionEnd::InterpolationError ||
+          r.end == graspkit::MotionEnd::Stopped)
+        break;
       if (round > kMaxRounds) {
         total.end = graspkit::MotionEnd::IterationLimit;
         break;

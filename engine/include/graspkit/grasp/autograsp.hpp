@@ -22,6 +22,10 @@ struct AutoGraspOptions {
   double speedFactor = 1.0;
   bool stopAtContact = false;  // end at the first contact, as GraspIt!'s stopAtContact
   int maxIterations = 500;     // GraspIt!'s failsafe
+  // Asked before each step; false ends the close where it is (MotionEnd::Stopped). A planner's
+  // time budget runs out inside a close this way: a close of a hand with small DOF steps (the
+  // RobotIQ's linkage) takes long enough to overrun a budget checked only between closes.
+  std::function<bool()> keepGoing;
 };
 
 enum class MotionEnd {
@@ -31,9 +35,11 @@ enum class MotionEnd {
   InterpolationError,  // the contact instant could not be bracketed (GraspIt!'s "Robot joint
                        // interpolation error")
   NoContact,           // approachToContact went its whole distance without touching
+  Stopped,             // keepGoing said stop: the motion is unfinished
 };
 
-// "settled", "contact", "iteration_limit", "interpolation_error" or "no_contact": how reports
+// "settled", "contact", "iteration_limit", "interpolation_error", "no_contact" or "stopped": how
+// reports
 // and scripts name a motion's end (base/enum_names.hpp: nameOf, valueNamed, parseNamed).
 std::span<const EnumName<MotionEnd>> enumNames(std::type_identity<MotionEnd>);
 
@@ -59,10 +65,11 @@ AutoGraspResult genericAutoGrasp(World& world, int robot, const AutoGraspOptions
 // bisected back to the contact instant, and the joints behind each touching link stop (a link
 // already touching at the start stops them if the motion would push it further in).
 struct DofMotion {
-  std::vector<double> targets;  // one per DOF, clamped into the DOF's range
-  std::vector<double> steps;    // one per DOF; magnitudes
-  bool stopAtContact = false;   // end after the first step that brought a contact
-  int maxIterations = 500;      // GraspIt!'s failsafe
+  std::vector<double> targets;      // one per DOF, clamped into the DOF's range
+  std::vector<double> steps;        // one per DOF; magnitudes
+  bool stopAtContact = false;       // end after the first step that brought a contact
+  int maxIterations = 500;          // GraspIt!'s failsafe
+  std::function<bool()> keepGoing;  // as AutoGraspOptions::keepGoing
   // Called after every change of the DOF values (each step and each bisection point), before
   // collisions are checked: lets a caller move the base with the fingers (a compliant close).
   std::function<void(World&, int robot)> afterDofChange;

@@ -21,7 +21,8 @@ class PlanningScene;
 
 struct CentringSettings {
   int moves = 3;  // the most moves of the open hand (0: a plain finishGrasp)
-  // Asked before each move; false stops the moves (a time budget running out).
+  // Asked before each move and each step of a close; false stops there (a time budget running
+  // out), leaving the grasp unevaluated when its first close was stopped.
   std::function<bool()> keepGoing;
 };
 

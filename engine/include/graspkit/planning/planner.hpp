@@ -136,8 +136,11 @@ void finishGrasps(const PlanningRequest& request, std::vector<PlannedGrasp>& gra
 // world to save for a grasp: loaded again it gives the same contacts, epsilon and volume.
 World graspWorld(const PlanningRequest& request, const PlannedGrasp& grasp);
 
-// Closes the hand on one grasp in `scene` (its world is changed) and measures it.
-void finishGrasp(PlanningScene& scene, PlannedGrasp& grasp);
+// Closes the hand on one grasp in `scene` (its world is changed) and measures it. `keepGoing`,
+// when set, is asked before each step of the close; when it says stop, the close ends there, the
+// grasp is left unevaluated and false is returned (a time budget running out).
+bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp,
+                 const std::function<bool()>& keepGoing = {});
 
 // Helpers for planner implementations.
 std::shared_ptr<const SearchSpace> makeSearchSpace(const PlanningRequest& request);
