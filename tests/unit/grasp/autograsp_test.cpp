@@ -107,6 +107,26 @@ TEST(AutoGrasp, ParallelJawClosesOnTheBox) {
   }
 }
 
+// A close asked to stop (a planner's time budget running out) ends before its next step, where
+// it is, and says so: the jaw stands where the steps taken so far put it.
+TEST(AutoGrasp, KeepGoingStopsTheCloseBetweenSteps) {
+  World reference = gripperBox();
+  const AutoGraspResult whole = autoGrasp(reference, 0);
+  ASSERT_GT(whole.iterations, 4);
+
+  World world = gripperBox();
+  int asked = 0;
+  AutoGraspOptions options;
+  options.keepGoing = [&asked] { return ++asked <= 3; };
+  const AutoGraspResult stopped = autoGrasp(world, 0, options);
+  EXPECT_EQ(stopped.end, MotionEnd::Stopped);
+  EXPECT_EQ(stopped.iterations, 3);
+  EXPECT_EQ(asked, 4);  // asked before each of the 3 steps, and once more to stop
+  EXPECT_GT(world.robot(0).dofValues()[0], 0.0);
+  EXPECT_LT(world.robot(0).dofValues()[0], whole.dofValues[0]);
+  EXPECT_EQ(nameOf(MotionEnd::Stopped), "stopped");
+}
+
 TEST(AutoGrasp, OpenUntilFreeAfterClosingIntoTheBox) {
   World world = gripperBox();
   const BodyRef box = graspable(world);
