@@ -25,17 +25,30 @@ struct OptionsDeleter {
   void operator()(SolverOptions* options) const { solver_options_delete(options); }
 };
 
+// Siconos' view of the problem (W, q, mu): it points into the caller's arrays, which it reads.
+struct SiconosProblem {
+  SiconosProblem(MatrixX& W, VectorX& q, VectorX& mu)
+      : matrix(NM_create_from_data(NM_DENSE, static_cast<int>(q.size()), static_cast<int>(q.size()),
+                                   W.data())) {
+    problem.dimension = 3;
+    problem.numberOfContacts = static_cast<int>(q.size()) / 3;
+    problem.M = matrix;
+    problem.q = q.data();
+    problem.mu = mu.data();
+  }
+  ~SiconosProblem() { NM_free_not_dense(matrix); }
+  SiconosProblem(const SiconosProblem&) = delete;
+  SiconosProblem& operator=(const SiconosProblem&) = delete;
+
+  NumericsMatrix* matrix;
+  FrictionContactProblem problem{};
+};
+
 // Runs one Siconos solver on the problem; the problem's arrays stay owned by the caller.
 bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, VectorX& q,
                VectorX& mu, const VectorX& start, FrictionContactSolution& solution) {
   const int rows = static_cast<int>(q.size());
-  NumericsMatrix* matrix = NM_create_from_data(NM_DENSE, rows, rows, W.data());
-  FrictionContactProblem problem{};
-  problem.dimension = 3;
-  problem.numberOfContacts = rows / 3;
-  problem.M = matrix;
-  problem.q = q.data();
-  problem.mu = mu.data();
+  SiconosProblem siconos(W, q, mu);
   std::unique_ptr<SolverOptions, OptionsDeleter> options(solver_options_create(solver_id));
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
   options->dparam[SICONOS_DPARAM_TOL] = tolerance;
@@ -47,30 +60,22 @@ bool runSolver(int solver_id, int max_iterations, double tolerance, MatrixX& W, 
   }
   solution.reaction = start.size() == rows ? start : VectorX::Zero(rows);
   solution.velocity = VectorX::Zero(rows);
-  const int info =
-      fc3d_driver(&problem, solution.reaction.data(), solution.velocity.data(), options.get());
+  const int info = fc3d_driver(&siconos.problem, solution.reaction.data(), solution.velocity.data(),
+                               options.get());
   solution.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
   solution.error = options->dparam[SICONOS_DPARAM_RESIDU];
-  NM_free_not_dense(matrix);
   return info == 0 && solution.reaction.allFinite();
 }
 
 // Siconos' residual of `reaction` on the problem (W, q, mu), relative to |q| as its solvers
 // report it.
 double residual(MatrixX& W, VectorX& q, VectorX& mu, VectorX& reaction) {
-  const int rows = static_cast<int>(q.size());
-  NumericsMatrix* matrix = NM_create_from_data(NM_DENSE, rows, rows, W.data());
-  FrictionContactProblem problem{};
-  problem.dimension = 3;
-  problem.numberOfContacts = rows / 3;
-  problem.M = matrix;
-  problem.q = q.data();
-  problem.mu = mu.data();
+  SiconosProblem siconos(W, q, mu);
   VectorX velocity = W * reaction + q;
   const double scale = q.norm() > 0.0 ? q.norm() : 1.0;
   double error = 0.0;
-  fc3d_compute_error(&problem, reaction.data(), velocity.data(), 0.0, nullptr, scale, &error);
-  NM_free_not_dense(matrix);
+  fc3d_compute_error(&siconos.problem, reaction.data(), velocity.data(), 0.0, nullptr, scale,
+                     &error);
   return error;
 }
 
