@@ -1,6 +1,7 @@
 #include "graspkit/grasp/quality.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -25,11 +26,18 @@ class VolumeMeasure final : public QualityMeasure {
   double evaluate(const GraspWrenchSpace& gws) const override { return volumeQuality(gws); }
 };
 
+class WeightMeasure final : public QualityMeasure {
+ public:
+  std::string name() const override { return "weight"; }
+  double evaluate(const GraspWrenchSpace& gws) const override { return weightQuality(gws); }
+};
+
 }  // namespace
 
 std::vector<std::pair<std::string, QualityMeasureFactory>> builtinQualityMeasures() {
   return {{"epsilon", [] { return std::make_unique<EpsilonMeasure>(); }},
-          {"volume", [] { return std::make_unique<VolumeMeasure>(); }}};
+          {"volume", [] { return std::make_unique<VolumeMeasure>(); }},
+          {"weight", [] { return std::make_unique<WeightMeasure>(); }}};
 }
 
 bool isForceClosure(double epsilon) {
@@ -46,6 +54,18 @@ double epsilonQuality(const GraspWrenchSpace& gws) {
   for (const WrenchHyperplane& h : gws.hyperplanes) {
     if (h.offset > 0.0) return -1.0;  // the origin is outside this facet
     smallest = std::min(smallest, -h.offset);
+  }
+  return smallest;
+}
+
+double weightQuality(const GraspWrenchSpace& gws) {
+  if (gws.originOutside || !gws.built || gws.hyperplanes.empty()) return -1.0;
+  if (std::isnan(gws.volume)) return std::numeric_limits<double>::quiet_NaN();  // one facet only
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const WrenchHyperplane& h : gws.hyperplanes) {
+    if (h.offset > 0.0) return -1.0;  // the origin is outside this facet
+    const double force = h.normal.head<3>().norm();
+    if (force > 0.0) smallest = std::min(smallest, -h.offset / force);
   }
   return smallest;
 }

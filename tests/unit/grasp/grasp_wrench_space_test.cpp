@@ -369,18 +369,55 @@ TEST(GraspQuality, LInfinityContainsL1) {
   EXPECT_GT(linf.volume, l1.volume);
 }
 
+// The weight measure is the inradius of the hull's slice of zero torque. For the cross-polytope
+// with its force axes stretched by `a`, that slice is the octahedron with vertices +-a e_i
+// (i < 3), whose inradius is a / sqrt(3); the torque axes do not change it.
+TEST(WeightQuality, IsTheInradiusOfTheZeroTorqueSlice) {
+  for (const double a : {1.0, 0.25, 3.0}) {
+    auto sets = crossPolytope();
+    for (int i = 0; i < 3; ++i)
+      for (Vector6& w : sets[static_cast<std::size_t>(i)]) w *= a;
+    const GraspWrenchSpace gws = graspWrenchSpace(sets);
+    ASSERT_TRUE(gws.built) << gws.failure;
+    EXPECT_NEAR(weightQuality(gws), a / std::sqrt(3.0), 1e-9) << "a = " << a;
+    EXPECT_GE(weightQuality(gws), epsilonQuality(gws));
+  }
+}
+
+TEST(WeightQuality, IsMinusOneWithoutForceClosureAndNaNForOneFacet) {
+  const GraspWrenchSpace outside = graspWrenchSpace(crossPolytopeWithin(-0.1));
+  ASSERT_TRUE(outside.built) << outside.failure;
+  EXPECT_EQ(weightQuality(outside), -1.0);
+  EXPECT_EQ(weightQuality(GraspWrenchSpace{}), -1.0);  // not built
+  // NearestFacet keeps only the facet nearest the origin, which does not bound the slice.
+  const GraspWrenchSpace nearest =
+      graspWrenchSpace(crossPolytope(), {.method = HullMethod::NearestFacet});
+  EXPECT_TRUE(std::isnan(weightQuality(nearest)));
+}
+
+// Two frictional contacts pressing a sphere from opposite sides along x: they resist any force
+// (friction across, the other contact along x) but no torque about x, so they are not force
+// closure and the weight measure says so.
+TEST(WeightQuality, TwoAntipodalContactsAreNotCounted) {
+  const std::vector<Contact> contacts = {objectContact(Vector3(30, 0, 0), Vector3(-1, 0, 0), 0.5),
+                                         objectContact(Vector3(-30, 0, 0), Vector3(1, 0, 0), 0.5)};
+  EXPECT_EQ(weightQuality(graspSpace(contacts, 30.0)), -1.0);
+}
+
 // --- Registry ---------------------------------------------------------------------------------
 
 TEST(QualityRegistry, BuiltInsArePresent) {
   const std::vector<std::string> names = qualityMeasureNames();
   EXPECT_NE(std::find(names.begin(), names.end(), "epsilon"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "volume"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "weight"), names.end());
   EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
 
   const GraspWrenchSpace gws = graspWrenchSpace(crossPolytope());
   EXPECT_EQ(makeQualityMeasure("epsilon")->name(), "epsilon");
   EXPECT_NEAR(makeQualityMeasure("epsilon")->evaluate(gws), 1.0 / std::sqrt(6.0), 1e-9);
   EXPECT_NEAR(makeQualityMeasure("volume")->evaluate(gws), 64.0 / 720.0, 1e-9);
+  EXPECT_NEAR(makeQualityMeasure("weight")->evaluate(gws), 1.0 / std::sqrt(3.0), 1e-9);
 }
 
 class FacetCount final : public QualityMeasure {

@@ -6,6 +6,11 @@
 //              when the grasp is not force closure or the hull could not be built;
 //   "volume"   the volume of the wrench space; 0 when the hull could not be built (no force
 //              closure check); NaN when HullMethod::SkipNonForceClosure skipped the hull.
+// and one of graspkit's own:
+//   "weight"   the largest pure force through the object's centre of mass (no torque) that the
+//              grasp resists in every direction: what it can do against the object's weight,
+//              however the object is turned, in units of the contacts' normal force
+//              (weightQuality()).
 // Names are case-sensitive.
 
 #include <functional>
@@ -57,5 +62,17 @@ bool isForceClosure(const GraspWrenchSpace& gws);
 // The built-in measures as plain functions.
 double epsilonQuality(const GraspWrenchSpace& gws);
 double volumeQuality(const GraspWrenchSpace& gws);
+
+// The radius of the largest ball about the origin inside the wrench space's slice of zero torque:
+// the largest force through the centre of mass (GraspIt!'s torque origin) that the grasp resists
+// whatever its direction, with the wrench space's bounded contact forces. The slice keeps the
+// facets' inequalities n.w + offset <= 0 with w = (f, 0), so the radius is the smallest
+// -offset / |n_force| over the facets; facets of torque alone do not bound it. Epsilon is the
+// same radius over every wrench, so weight >= epsilon always. A grasp wins a pull of the object's
+// weight m g when its contacts can press with a total normal force of about m g / weight (L1
+// space; each contact m g / weight for LInfinity) or more. -1 when the origin is outside the
+// hull or the hull was not built (not force closure); NaN for HullMethod::NearestFacet's one
+// facet, which does not bound the slice (its volume is NaN too).
+double weightQuality(const GraspWrenchSpace& gws);
 
 }  // namespace graspkit
