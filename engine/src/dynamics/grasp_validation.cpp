@@ -58,8 +58,8 @@ Transform heldPose(const World& world, int robot) {
 }
 
 // Whether the hand and the object have come to rest: the object and the hand's DOFs slower than
-// restSpeed for restSeconds, and either each pair of bodies' force steady or the speed gaining
-// too slowly to reach restSpeed within a run.
+// restSpeed, and each pair of bodies' force steady, for restSeconds; or, where a pair's force
+// has wandered, the speed gaining too slowly to reach restSpeed within a run for 0.5 s.
 //
 // The force is each pair's total impulse, averaged over the last two steps. Rigid bodies with
 // redundant contacts share a force among them in no one way (the solver may pass it from one
@@ -72,9 +72,11 @@ Transform heldPose(const World& world, int robot) {
 // A rigid squeeze's internal force is not determined at all: with every speed below 1e-4 mm/s
 // and the net force on the object its weight, the solver passed force between the contacts of a
 // finger in jumps of more than 5 % every few tenths of a second, and a link touched the object at
-// one step and not at the next (the Barrett on a box): the watch never ran out. Such a grasp is
-// at rest all the same when its motion, followed to the end of a run at the rate it gained speed
-// since the watch began, stays below restSpeed.
+// one step and not at the next (the Barrett on a box): the watch never ran out, and every pull
+// of a squeezed grasp ran to its end. Such a grasp is taken to be at rest all the same when its
+// motion, followed to the end of a run at the rate it gained speed since the watch began, stays
+// below restSpeed for kWanderingRestSeconds (0.5 s). Not 0.1 s: a wandering force can still tip
+// a grasp into sliding, and one box stood still for 0.3 s before it slid out 0.7 s into its pull.
 class RestWatch {
  public:
   RestWatch(const ValidationRequest& request, double radius)
@@ -103,8 +105,11 @@ class RestWatch {
         restart(world.time(), speed, std::move(mean));
         return false;
       }
+      wandered_ = true;
     }
-    return world.time() - since_ >= request_.restSeconds - 1e-9;
+    const double needed =
+        wandered_ ? std::max(request_.restSeconds, kWanderingRestSeconds) : request_.restSeconds;
+    return world.time() - since_ >= needed - 1e-9;
   }
 
  private:
@@ -114,6 +119,7 @@ class RestWatch {
     watching_ = true;
     since_ = time;
     speedSince_ = speed;
+    wandered_ = false;
     forces_ = std::move(forces);
   }
 
@@ -152,11 +158,13 @@ class RestWatch {
   }
 
   static constexpr double kSteadyForce = 0.05;
+  static constexpr double kWanderingRestSeconds = 0.5;
   const ValidationRequest& request_;
   double radius_;
   bool watching_ = false;  // a rest has begun (since_ is its start)
   double since_ = 0.0;
   double speedSince_ = 0.0;  // the speed as the watch began
+  bool wandered_ = false;    // a pair's force has left its 5 % since the watch began
   PairForces previous_;
   PairForces forces_;
 };

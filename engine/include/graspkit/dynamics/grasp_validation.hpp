@@ -28,11 +28,11 @@ struct ValidationRequest {
   double maxTurn = 15.0 * 3.14159265358979 / 180.0;  // rad
   double gravity = kStandardGravity;                 // mm/s^2, the size of the pull
   // A direction ends early once the hand and the object have come to rest under the pull:
-  // every speed below restSpeed (mm/s; rad/s times the object's radius) for restSeconds, with
-  // each pair of bodies' force steady or, where a rigid squeeze's force wanders, the speed
-  // gaining too slowly to reach restSpeed within `seconds`. What is left of the run cannot move
-  // the object by more than restSpeed times the time left, which is counted in its slip. False
-  // runs every second.
+  // every speed below restSpeed (mm/s; rad/s times the object's radius) and each pair of
+  // bodies' force steady for restSeconds or, where a rigid squeeze's force wanders, the speed
+  // gaining too slowly to reach restSpeed within `seconds` for at least 0.5 s. What is left of
+  // the run cannot move the object by more than restSpeed times the time left, which is counted
+  // in its slip. False runs every second.
   bool stopAtRest = true;
   double restSpeed = 1e-3;
   double restSeconds = 0.1;
