@@ -93,34 +93,34 @@ class RestWatch {
     if (!averaged(previous_, mean)) mean.clear();
     previous_ = std::move(now);
     if (!watching_ || speed > request_.restSpeed) {
-      restart(world.time(), speed, std::move(mean));
+      restart(world.time(), speed);
+      steadySince_ = world.time();
+      forces_ = std::move(mean);
       return false;
     }
     if (!steady(mean)) {
-      // Still at rest if the speed, gaining at its rate since the watch began, stays below
-      // restSpeed for a whole run.
+      // The steady watch begins again from these forces; the slow one goes on while the speed,
+      // gaining at its rate since that watch began, stays below restSpeed for a whole run.
+      steadySince_ = world.time();
+      forces_ = std::move(mean);
       const double elapsed = world.time() - since_;
       const double gain = elapsed > 0.0 ? std::max(0.0, speed - speedSince_) / elapsed : 0.0;
       if (speed + gain * request_.seconds > request_.restSpeed) {
-        restart(world.time(), speed, std::move(mean));
+        restart(world.time(), speed);
         return false;
       }
-      wandered_ = true;
     }
-    const double needed =
-        wandered_ ? std::max(request_.restSeconds, kWanderingRestSeconds) : request_.restSeconds;
-    return world.time() - since_ >= needed - 1e-9;
+    return world.time() - steadySince_ >= request_.restSeconds - 1e-9 ||
+           world.time() - since_ >= std::max(request_.restSeconds, kWanderingRestSeconds) - 1e-9;
   }
 
  private:
   using PairForces = std::vector<std::pair<std::pair<BodyRef, BodyRef>, Vector3>>;
 
-  void restart(double time, double speed, PairForces forces) {
+  void restart(double time, double speed) {
     watching_ = true;
     since_ = time;
     speedSince_ = speed;
-    wandered_ = false;
-    forces_ = std::move(forces);
   }
 
   static PairForces pairForces(const std::vector<ContactImpulse>& impulses) {
@@ -161,10 +161,10 @@ class RestWatch {
   static constexpr double kWanderingRestSeconds = 0.5;
   const ValidationRequest& request_;
   double radius_;
-  bool watching_ = false;  // a rest has begun (since_ is its start)
-  double since_ = 0.0;
-  double speedSince_ = 0.0;  // the speed as the watch began
-  bool wandered_ = false;    // a pair's force has left its 5 % since the watch began
+  bool watching_ = false;     // a rest has begun
+  double since_ = 0.0;        // when every speed went below restSpeed (the slow watch)
+  double speedSince_ = 0.0;   // the speed then
+  double steadySince_ = 0.0;  // when the pairs' forces were last taken (the steady watch)
   PairForces previous_;
   PairForces forces_;
 };
