@@ -10,9 +10,12 @@
 #include <SolverOptions.h>
 #include <fc3d_compute_error.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 namespace graspkit::dynamics {
 
@@ -21,6 +24,22 @@ namespace {
 constexpr double kAcceptableError = 1e-5;
 // NSGS sweeps before Newton's method takes over from NSGS's answer.
 constexpr int kSweepsBeforeNewton = 100;
+
+// OpenBLAS (Debian's BLAS, behind Siconos) splits a product over threads of its own when it sees
+// more than one CPU, and the partial sums then round differently: a dataset's files came out
+// different under mpirun, where each rank is bound to one core, than from one process, and a
+// squeezed grasp's slips differed in the last digits. These problems are far too small to gain
+// from threads, so OpenBLAS is set to one thread the first time a contact problem is solved
+// (process-wide: OpenBLAS 0.3.21 has no per-thread setting). Another BLAS has no such function,
+// and there is nothing to do.
+void useOneBlasThread() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    using SetThreads = void (*)(int);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+      set(1);
+  });
+}
 
 struct OptionsDeleter {
   void operator()(SolverOptions* options) const { solver_options_delete(options); }
@@ -128,6 +147,7 @@ FrictionContactSolution solveFrictionContact(const MatrixX& W_in, const VectorX&
     return solution;
   }
   numerics_set_verbose(0);
+  useOneBlasThread();
   // Siconos asserts (and aborts the process) on some non-finite problems: never hand it one.
   if (!W_in.allFinite() || !q_in.allFinite() || !mu_in.allFinite() || !start.allFinite())
     throw Error(
