@@ -67,7 +67,8 @@ double weightQuality(const GraspWrenchSpace& gws) {
     const double force = h.normal.head<3>().norm();
     if (force > 0.0) smallest = std::min(smallest, -h.offset / force);
   }
-  return smallest;
+  // A space built without force coordinates has no facet that bounds a force.
+  return std::isinf(smallest) ? std::numeric_limits<double>::quiet_NaN() : smallest;
 }
 
 double volumeQuality(const GraspWrenchSpace& gws) {

@@ -393,6 +393,11 @@ TEST(WeightQuality, IsMinusOneWithoutForceClosureAndNaNForOneFacet) {
   const GraspWrenchSpace nearest =
       graspWrenchSpace(crossPolytope(), {.method = HullMethod::NearestFacet});
   EXPECT_TRUE(std::isnan(weightQuality(nearest)));
+  // Torques alone: no facet bounds a force.
+  const GraspWrenchSpace torques =
+      graspWrenchSpace(crossPolytope(), {.dimensions = {false, false, false, true, true, true}});
+  ASSERT_TRUE(torques.built) << torques.failure;
+  EXPECT_TRUE(std::isnan(weightQuality(torques)));
 }
 
 // Two frictional contacts pressing a sphere from opposite sides along x: they resist any force

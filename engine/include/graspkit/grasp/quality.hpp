@@ -72,7 +72,8 @@ double volumeQuality(const GraspWrenchSpace& gws);
 // weight m g when its contacts can press with a total normal force of about m g / weight (L1
 // space; each contact m g / weight for LInfinity) or more. -1 when the origin is outside the
 // hull or the hull was not built (not force closure); NaN for HullMethod::NearestFacet's one
-// facet, which does not bound the slice (its volume is NaN too).
+// facet, which does not bound the slice (its volume is NaN too), and for a space built without
+// the force coordinates.
 double weightQuality(const GraspWrenchSpace& gws);
 
 }  // namespace graspkit
