@@ -26,6 +26,7 @@
 #include "commands/plugins_command.hpp"
 #include "commands/render_command.hpp"
 #include "commands/run_command.hpp"
+#include "commands/serve_command.hpp"
 #include "commands/simulate_command.hpp"
 #include "commands/test_command.hpp"
 #include "commands/validate_command.hpp"
@@ -63,7 +64,7 @@ int usageError(const CLI::App& app, const CLI::ParseError& e) {
 }
 
 // The first word of the command line that is not an option (nor the value of --no-warn), when it
-// names no command: `graspkit serve` is an unknown command, not a missing one.
+// names no command: `graspkit frobnicate` is an unknown command, not a missing one.
 std::optional<std::string> unknownCommand(const CLI::App& app, int argc, char** argv) {
   if (!app.get_subcommands().empty()) return std::nullopt;
   for (int i = 1; i < argc; ++i) {
@@ -101,6 +102,7 @@ struct CommandOptions {
   graspkit::cli::RenderOptions render;
   graspkit::cli::ExportOptions exportScene;
   graspkit::cli::ViewOptions view;
+  graspkit::cli::ServeOptions serve;
   graspkit::cli::SimulateOptions simulate;
   graspkit::cli::ValidateOptions validate;
   graspkit::cli::ObjectsOptions objects;
@@ -120,6 +122,7 @@ int runCommand(const CLI::App& app, const CommandOptions& o, bool quiet, bool ve
     if (app.got_subcommand("render")) return runRender(o.render, std::cout);
     if (app.got_subcommand("export")) return runExport(o.exportScene, std::cout);
     if (app.got_subcommand("view")) return runView(o.view, std::cout);
+    if (app.got_subcommand("serve")) return runServe(o.serve, std::cout);
     if (app.got_subcommand("simulate")) return runSimulate(o.simulate, std::cout);
     if (app.got_subcommand("validate")) return runValidate(o.validate, std::cout);
     if (app.got_subcommand("objects")) return runObjects(o.objects, quiet, std::cout);
@@ -182,6 +185,7 @@ int main(int argc, char** argv) {
   graspkit::cli::addRenderCommand(app, options.render);
   graspkit::cli::addExportCommand(app, options.exportScene);
   graspkit::cli::addViewCommand(app, options.view);
+  graspkit::cli::addServeCommand(app, options.serve);
   graspkit::cli::addSimulateCommand(app, options.simulate);
   graspkit::cli::addValidateCommand(app, options.validate);
   graspkit::cli::addObjectsCommand(app, options.objects);

@@ -1,6 +1,6 @@
 # An unknown command is named as such, with the commands listed, and exits with the usage
 # status 2; no command at all still asks for one.
-foreach(args "serve" "frobnicate;--json" "-q;serve;models/worlds/default.xml")
+foreach(args "serv" "frobnicate;--json" "-q;serv;models/worlds/default.xml")
   execute_process(COMMAND ${GRASPKIT} ${args} OUTPUT_VARIABLE out ERROR_VARIABLE err
                   RESULT_VARIABLE rc)
   list(GET args 0 first)
@@ -13,7 +13,7 @@ foreach(args "serve" "frobnicate;--json" "-q;serve;models/worlds/default.xml")
   if(NOT err MATCHES "graspkit: error: unknown command '${first}'")
     message(FATAL_ERROR "graspkit ${args} does not name the unknown command: ${err}")
   endif()
-  foreach(command info grasp plan convert render simulate validate batch)
+  foreach(command info grasp plan convert render simulate validate batch serve)
     if(NOT err MATCHES "[ ,]${command}[,.]")
       message(FATAL_ERROR "graspkit ${args} does not list '${command}': ${err}")
     endif()

@@ -106,6 +106,14 @@ void writePng(const Image& image, const std::filesystem::path& file) {
   writeFileAtomically(file, encoded);
 }
 
+std::string pngBytes(const Image& image) {
+  if (image.width <= 0 || image.height <= 0) throw Error("cannot encode an empty picture");
+  PngState state;
+  std::string encoded = encodePng(image, state);
+  if (!state.error.empty()) throw Error("cannot encode the PNG: " + state.error);
+  return encoded;
+}
+
 namespace {
 
 // The libpng calls of a read, apart from any C++ object a longjmp could skip; false after a

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct Image {
 // Writes `image` as an 8-bit RGB PNG, atomically (a temporary file, then a rename). Throws
 // graspkit::Error naming the file when it cannot be written or the image is empty.
 void writePng(const Image& image, const std::filesystem::path& file);
+// The same PNG's bytes, for a server to send. Throws graspkit::Error for an empty image.
+std::string pngBytes(const Image& image);
 // Reads an 8-bit or 16-bit PNG of any colour type into RGB (alpha dropped, grey expanded).
 // Throws graspkit::Error naming the file for a missing or damaged file.
 Image readPng(const std::filesystem::path& file);
