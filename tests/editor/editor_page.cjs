@@ -119,6 +119,16 @@ const relative = (a, b) => Math.abs(a - b) / Math.max(1e-12, Math.abs(b));
     const out = await editor(page, () => window.graspkitEditor.state);
     check(out.collisions.length === 0, `back out, collisions remain: ${JSON.stringify(out.collisions)}`);
     check((await page.$eval('#collisions', (e) => e.textContent)) === 'no collisions', 'the panel still shows collisions');
+    // Undo takes the hand back into the mug, redo out again.
+    await page.click('#undo');
+    await editor(page, () => window.graspkitEditor.idle());
+    const undone = await editor(page, () => window.graspkitEditor.state);
+    check(JSON.stringify(undone.hand.pose) === JSON.stringify(inside.hand.pose), 'undo did not restore the pose inside the mug');
+    await page.click('#redo');
+    await editor(page, () => window.graspkitEditor.idle());
+    const redone = await editor(page, () => window.graspkitEditor.state);
+    check(JSON.stringify(redone.hand.pose) === JSON.stringify(out.hand.pose) && redone.collisions.length === 0,
+      'redo did not bring the hand back out');
 
     // Autograsp from the plan's pre-grasp: the epsilon `graspkit grasp --autograsp` gives.
     await editor(page, (p) => window.graspkitEditor.drag(p.translation, p.quaternion), pregrasp);

@@ -145,6 +145,7 @@ int serveEditor(EditorSession& session, const ServerOptions& options, std::ostre
   httplib::Server server;
   server.set_payload_max_length(options.maxRequestBytes);
   server.set_read_timeout(10, 0);
+  server.set_tcp_nodelay(true);  // small answers go out at once, not after a delayed ACK
   RateLimit limit(options.requestsPerSecond, options.burst);
   int port = 0;
   server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {

@@ -15,8 +15,8 @@ struct ServerOptions {
   int port = 8765;                        // 0: any free port (the printed address says which)
   std::string token;                      // empty: a random one
   std::size_t maxRequestBytes = 1 << 20;  // larger bodies are refused (413)
-  double requestsPerSecond = 200.0;       // sustained; more are refused (429)
-  double burst = 400.0;                   // requests allowed at once before the rate applies
+  double requestsPerSecond = 1000.0;      // sustained; more are refused (429)
+  double burst = 1000.0;                  // requests allowed at once before the rate applies
 };
 
 // 128 random bits from the operating system, as 32 hex digits.
