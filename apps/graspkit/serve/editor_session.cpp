@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <map>
 
@@ -150,6 +151,21 @@ std::string numberList(std::span<const double> values) {
   return text;
 }
 
+// The world file a plan's grasps stand on: the first grasp's world (plan --out writes them
+// beside the plan), else the planned world. Empty when the plan names neither.
+std::filesystem::path planWorldFile(const std::filesystem::path& plan) {
+  std::ifstream in(plan);
+  const json j = json::parse(in, nullptr, false);
+  if (!j.is_object()) return {};
+  if (j.contains("world_files") && j["world_files"].is_array() && !j["world_files"].empty() &&
+      j["world_files"][0].is_string())
+    return plan.parent_path() /
+           std::filesystem::path(j["world_files"][0].get<std::string>()).filename();
+  if (j.contains("world") && j["world"].is_string())
+    return plan.parent_path() / j["world"].get<std::string>();
+  return {};
+}
+
 }  // namespace
 
 EditorSession::EditorSession(const std::filesystem::path& input, EditorOptions options)
@@ -172,6 +188,7 @@ void EditorSession::open(const std::filesystem::path& input) {
     flags.roots = options_.load.roots;
     std::vector<SceneFrame> frames = loadFrames({input, flags, false, 0, 0});
     session.world = frames.front().world.clone();
+    session.file = planWorldFile(input);
     for (SceneFrame& frame : frames) {
       const int hand = host::defaultHand(frame.world);
       grasps.push_back({frame.name, handConfigurationOf(frame.world, hand), frame.summary});
@@ -365,15 +382,19 @@ std::filesystem::path checkedPath(const json& args, const lua::PathPolicy& files
   if (!file.is_string() || file.get<std::string>().empty())
     throw badArgument("'file' must be a file name");
   const std::filesystem::path path = file.get<std::string>();
-  try {
-    if (write)
-      files.checkWrite(path);
-    else
-      files.checkRead(path);
-  } catch (const Error& e) {
-    throw RequestError(403, e.what());
-  }
-  return path;
+  if (write ? files.mayWrite(path) : files.mayRead(path)) return path;
+  const auto& folders = write ? files.writable() : files.readable();
+  std::string list;
+  for (const auto& folder : folders) list += (list.empty() ? "" : ", ") + folder.string();
+  if (write && folders.empty())
+    throw RequestError(403,
+                       fmt::format("{}: saving is off (start graspkit serve with --allow-write "
+                                   "DIR to save below DIR)",
+                                   path.string()));
+  throw RequestError(403, fmt::format("{}: not below the folders graspkit serve may {} ({}; add "
+                                      "one with {})",
+                                      path.string(), write ? "write" : "read", list,
+                                      write ? "--allow-write" : "--allow-read"));
 }
 
 }  // namespace
