@@ -141,8 +141,9 @@ void setDofsByHand(World& world, int hand, std::span<const double> values) {
   world.setDofValues(hand, values);
 }
 
+// The shortest text that reads back as the same double.
 std::string fixed(double v) {
-  return fmt::format("{:.6g}", v);
+  return fmt::format("{}", v);
 }
 
 std::string numberList(std::span<const double> values) {
