@@ -186,8 +186,16 @@ const relative = (a, b) => Math.abs(a - b) / Math.max(1e-12, Math.abs(b));
     const script = path.join(outDir, 'copied.lua');
     fs.writeFileSync(script, `${lua}print(table.concat(hand:dofs(), ","))\n`);
     const dofsFromLua = cli(['run', script, '--allow-read', path.dirname(path.dirname(worldFile))]).trim().split(',').map(Number);
-    slid.hand.dofs.forEach((d, i) => check(Math.abs(dofsFromLua[i] - d.value) < 1e-5,
+    slid.hand.dofs.forEach((d, i) => check(Math.abs(dofsFromLua[i] - d.value) < 1e-12,
       `the copied Lua sets DOF ${i} to ${dofsFromLua[i]}, the page shows ${d.value}`));
+
+    // Save picture: the engine's renderer, from the page's camera, the object in the middle.
+    const picture = path.join(outDir, 'picture.png');
+    await page.$eval('#picture-file', (input, file) => { input.value = file; }, picture);
+    await page.click('#save-picture');
+    await editor(page, () => window.graspkitEditor.idle());
+    check(fs.existsSync(picture) && fs.readFileSync(picture).subarray(1, 4).toString() === 'PNG',
+      'Save picture wrote no PNG');
 
     // Outside the allowed folders: refused, nothing written; the world is unchanged.
     const outside = `/tmp/graspkit-editor-outside-${process.pid}.xml`;
