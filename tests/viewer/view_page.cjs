@@ -1,12 +1,14 @@
 // The page `graspkit view` writes, opened in a real browser (headless Chromium through
 // puppeteer-core, WebGL on SwiftShader): no console errors; the object is drawn where the page's
 // camera projects its centre (its colour there, the background in the corners); stepping to
-// grasp 2 changes the hand's pixels, and stepping back draws grasp 1 again.
-// Usage: node view_page.cjs WORLD_PAGE.html PLAN_PAGE.html CHROMIUM OUT_DIR
+// grasp 2 changes the hand's pixels, and stepping back draws grasp 1 again. A simulation played
+// back (view --trajectory) ends with every body where the run's final world (simulate --out) has
+// it, the Barrett's broken-away fingers included.
+// Usage: node view_page.cjs WORLD_PAGE.html PLAN_PAGE.html CHROMIUM OUT_DIR RUN_PAGE FINAL_PAGE
 const puppeteer = require('puppeteer-core');
 const path = require('node:path');
 
-const [worldPage, planPage, chromium, outDir] = process.argv.slice(2);
+const [worldPage, planPage, chromium, outDir, runPage, finalPage] = process.argv.slice(2);
 
 function fail(message) {
   console.error(`view_page: FAILED: ${message}`);
@@ -90,6 +92,26 @@ function at(image, x, y) {
     if (changed < 0.01 * total) fail(`grasp 2 changed ${changed} of ${total} pixels`);
     if (restored > 0.001 * total) fail(`back at grasp 1, ${restored} pixels differ from the first view`);
     if (!label.startsWith('grasp 1 ')) fail(`the panel says '${label}' after stepping back`);
+    // The simulation played to its end: every body where the final world has it.
+    const run = await open(browser, runPage, errors);
+    const final = await open(browser, finalPage, errors);
+    const frameCount = await run.evaluate(() => window.graspkitViewer.frames);
+    if (frameCount < 10) fail(`the run page holds ${frameCount} frames`);
+    const bodies = ['mug', 'Barrett_chain0_link1', 'Barrett_chain0_link2', 'Barrett_chain2_link1'];
+    const firstFrame = {};
+    await run.evaluate(() => window.graspkitViewer.seek(0));
+    for (const name of bodies) firstFrame[name] = await run.evaluate((n) => window.graspkitViewer.bodyPosition(n), name);
+    await run.evaluate((k) => window.graspkitViewer.seek(k), frameCount - 1);
+    let moved = 0;
+    for (const name of bodies) {
+      const played = await run.evaluate((n) => window.graspkitViewer.bodyPosition(n), name);
+      const expected = await final.evaluate((n) => window.graspkitViewer.bodyPosition(n), name);
+      if (!played || !expected) fail(`no body '${name}' on the pages`);
+      const gap = Math.hypot(...played.map((v, i) => v - expected[i]));
+      if (gap > 1e-6) fail(`at the run's end '${name}' is drawn ${gap * 1000} mm from the final world's`);
+      moved = Math.max(moved, Math.hypot(...played.map((v, i) => v - firstFrame[name][i])));
+    }
+    if (moved < 0.005) fail(`nothing moved more than ${moved * 1000} mm in the run`);
     if (errors.length) fail(`console errors:\n${errors.join('\n')}`);
     console.log(`view_page: ok: object at ${x.toFixed(1)},${y.toFixed(1)} is ${centre}; ` +
                 `grasp 2 changed ${changed} of ${total} pixels`);

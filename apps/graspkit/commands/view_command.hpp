@@ -16,6 +16,7 @@ struct ViewOptions {
   std::filesystem::path html;
   LoadFlags load;
   int top = 0;
+  std::filesystem::path trajectory;  // simulate --trajectory's lines, played back on the world
 };
 
 void addViewCommand(CLI::App& app, ViewOptions& options);

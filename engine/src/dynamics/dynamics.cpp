@@ -545,7 +545,17 @@ std::string dynamicStateJson(const World& world) {
     const auto list = [](std::span<const double> values) {
       return std::vector<double>(values.begin(), values.end());
     };
+    // The base pose and the joints whose clutch broke away: with the DOF values they give every
+    // link's pose, so a trajectory can be played back (graspkit view --trajectory).
+    const Quaternion q(robot.pose().linear());
+    const Vector3 t = robot.pose().translation();
+    nlohmann::json brokeAway = nlohmann::json::array();
+    for (std::size_t j = 0; j < robot.breakaway().size(); ++j)
+      if (robot.breakaway()[j].engaged) brokeAway.push_back({j, robot.breakaway()[j].value});
     robots.push_back({{"name", robot.name()},
+                      {"position", {t.x(), t.y(), t.z()}},
+                      {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+                      {"broken_away", brokeAway},
                       {"dof_values", list(robot.dofValues())},
                       {"dof_velocities", list(robot.dofVelocities())},
                       {"dof_targets", list(robot.dofTargets())},

@@ -1,6 +1,6 @@
 // The graspkit view page: the scenes of an embedded binary glTF (one per world or grasp, with
 // each grasp's figures and contacts in the scene's extras), shown one at a time with orbit
-// controls. Bundled with three.js into one script at build time; the page needs no network.
+// controls; with a simulation's frames (view --trajectory), a play button and a time slider. Bundled with three.js into one script at build time; the page needs no network.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -113,6 +113,50 @@ function start() {
     draw();
   }
 
+  // A simulation played back: frame k puts every body where the trajectory had it.
+  const frames = meta.trajectory || [];
+  const playback = { timer: null, frame: 0 };
+  const slider = document.getElementById('time');
+  const clock = document.getElementById('clock');
+  function seek(k) {
+    if (frames.length === 0 || !state.shown) return;
+    playback.frame = Math.max(0, Math.min(frames.length - 1, k));
+    const poses = frames[playback.frame].bodies;
+    state.shown.traverse((node) => {
+      const pose = poses[node.name];
+      if (!pose || node === state.shown) return;
+      node.position.fromArray(pose.t);
+      node.quaternion.fromArray(pose.q);
+    });
+    slider.value = String(playback.frame);
+    clock.textContent = `${frames[playback.frame].time.toFixed(3)} s`;
+    // Contacts belong to the world as it was loaded, not to a frame of the run.
+    if (state.markers) state.markers.visible = playback.frame === 0 && panel.contacts.checked;
+    draw();
+  }
+  function play() {
+    if (playback.timer) {
+      clearInterval(playback.timer);
+      playback.timer = null;
+      return;
+    }
+    if (playback.frame >= frames.length - 1) seek(0);
+    playback.timer = setInterval(() => {
+      if (playback.frame >= frames.length - 1) {
+        clearInterval(playback.timer);
+        playback.timer = null;
+        return;
+      }
+      seek(playback.frame + 1);
+    }, 1000 / 30);
+  }
+  if (frames.length > 0) {
+    document.getElementById('playback').hidden = false;
+    slider.max = String(frames.length - 1);
+    slider.addEventListener('input', () => seek(Number(slider.value)));
+    document.getElementById('play').addEventListener('click', play);
+  }
+
   // Where a world point (metres) lands on the canvas, for tests and tools.
   function project(point) {
     const v = new THREE.Vector3(...point).project(camera);
@@ -141,6 +185,13 @@ function start() {
       show: (index) => show(index),
       current: () => state.index,
       project,
+      frames: frames.length,
+      seek,
+      // A body's position (metres) as drawn now.
+      bodyPosition: (name) => {
+        const node = state.shown && state.shown.getObjectByName(name);
+        return node ? node.position.toArray() : null;
+      },
     };
   }, (error) => {
     panel.name.textContent = `cannot read the scene: ${error.message || error}`;
