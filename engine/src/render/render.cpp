@@ -222,6 +222,7 @@ struct ContactMarker {
   double rim = 0.0;     // the rim's radius; 0: no rim among the lines
   Vector3 boundCentre;  // a sphere around sphere and cone, for a cheap miss
   double boundRadius;
+  double cullRadius = kInfinity;  // boundRadius and the lines' width there, seen from the camera
 };
 
 constexpr int kRimSegments = 32;
@@ -314,8 +315,8 @@ constexpr float kOutlineFill = 0.15f;      // each link surface's opacity, outli
 constexpr float kTransparentFill = 0.35f;  // and transparent ones
 constexpr int kMaxLinkLayers = 8;          // link surfaces a ray sees through; then opaque
 constexpr double kCreaseCos = 0.8;         // normals further apart than ~37 degrees: a crease
-// Rays per sample in a penumbra, towards a disc light: 16 with one sample a pixel, 8 with more
-// (a pixel of 4 samples then averages 32).
+// Rays per sample in a penumbra, towards a disc light: 16 with one sample a pixel, 4 with more
+// (a pixel of 4 samples then averages 16, in 4 turns of the pattern).
 constexpr int kShadowRays = 16;
 constexpr double kLightRadius = 0.12;  // the light's angular radius, radians
 constexpr float kShadowDepth = 0.4f;   // how much a full shadow takes from the light
@@ -336,13 +337,14 @@ struct Fragment {
 };
 
 struct Floor {
-  double height = 0.0;     // z of the plane, mm
-  Vector3 centre;          // the focus's centre
-  double inner = 0.0;      // opaque within this distance of the centre (horizontal)
-  double outer = 0.0;      // faded into the background beyond
-  Vector3 light;           // unit, towards the light
-  Vector3 lightU, lightV;  // unit, across the light's direction
-  BoundingSphere casters;  // the focus, whose shadows are looked for
+  double height = 0.0;                 // z of the plane, mm
+  Vector3 centre;                      // the focus's centre
+  double inner = 0.0;                  // opaque within this distance of the centre (horizontal)
+  double outer = 0.0;                  // faded into the background beyond
+  Vector3 light;                       // unit, towards the light
+  Vector3 lightU, lightV;              // unit, across the light's direction
+  BoundingSphere casters;              // the focus, whose shadows are looked for
+  std::vector<BoundingSphere> pieces;  // each body of the focus
   // Points of the light's disc (offsets across its direction, radians): a sunflower spiral.
   std::array<Eigen::Vector2d, kShadowRays> disc;
   int rays = kShadowRays;  // how many of them a sample in a penumbra traces
@@ -381,47 +383,68 @@ struct Tracer {
   // of the light's disc, turned by `spin` so that neighbouring samples sample it differently.
   double lightSeen(const Vector3& point, double spin) const {
     const Floor& f = *floor;
-    // A ray that passes nowhere near the casters' sphere cannot be stopped by them.
-    const Vector3 toCentre = f.casters.centre - point;
-    const double distance = toCentre.norm();
-    if (distance > f.casters.radius) {
-      // Outside the cone about the light of half angle asin(radius / distance) + kLightRadius.
-      const double sine = f.casters.radius / distance;
+    // A ray that passes nowhere near a caster's sphere cannot be stopped by it: trace only
+    // when some sphere lies within the cone about the light of half angle asin(radius /
+    // distance) + kLightRadius.
+    const auto within = [&](const BoundingSphere& sphere) {
+      const Vector3 toCentre = sphere.centre - point;
+      const double distance = toCentre.norm();
+      if (distance <= sphere.radius) return true;
+      const double sine = sphere.radius / distance;
       const double limit =
           std::sqrt(1.0 - sine * sine) * std::cos(kLightRadius) - sine * std::sin(kLightRadius);
-      if (toCentre.dot(f.light) < limit * distance) return 1.0;
-    }
+      return toCentre.dot(f.light) >= limit * distance;
+    };
+    if (!within(f.casters) || std::none_of(f.pieces.begin(), f.pieces.end(), within)) return 1.0;
     const double spinCos = std::cos(spin), spinSin = std::sin(spin);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    const auto lit = [&](int i) {
-      const Eigen::Vector2d& o = f.disc[static_cast<std::size_t>(i)];
-      const double u = spinCos * o.x() - spinSin * o.y(), v = spinSin * o.x() + spinCos * o.y();
-      const Vector3 d = (f.light + u * f.lightU + v * f.lightV).normalized();
-      RTCRay ray;
-      ray.org_x = static_cast<float>(point.x());
-      ray.org_y = static_cast<float>(point.y());
-      ray.org_z = static_cast<float>(point.z());
-      ray.dir_x = static_cast<float>(d.x());
-      ray.dir_y = static_cast<float>(d.y());
-      ray.dir_z = static_cast<float>(d.z());
-      ray.tnear = 0.0f;
-      ray.tfar = std::numeric_limits<float>::infinity();
-      ray.time = 0.0f;
-      ray.mask = ~0u;
-      ray.id = 0;
-      ray.flags = 0;
-      rtcOccluded1(scene, &context, &ray);
-      return ray.tfar >= 0.0f;  // Embree sets tfar to -inf when something is in the way
+    // How many of the rays towards the disc's points ids[0..count) (count <= 4) reach the light,
+    // traced as one Embree packet.
+    const auto seenOf = [&](const std::array<int, 4>& ids, int count) {
+      alignas(16) RTCRay4 rays;
+      alignas(16) int valid[4];
+      for (int k = 0; k < 4; ++k) {
+        valid[k] = k < count ? -1 : 0;
+        const Eigen::Vector2d& o = f.disc[static_cast<std::size_t>(ids[std::min(k, count - 1)])];
+        const double u = spinCos * o.x() - spinSin * o.y(), v = spinSin * o.x() + spinCos * o.y();
+        const Vector3 d = (f.light + u * f.lightU + v * f.lightV).normalized();
+        rays.org_x[k] = static_cast<float>(point.x());
+        rays.org_y[k] = static_cast<float>(point.y());
+        rays.org_z[k] = static_cast<float>(point.z());
+        rays.dir_x[k] = static_cast<float>(d.x());
+        rays.dir_y[k] = static_cast<float>(d.y());
+        rays.dir_z[k] = static_cast<float>(d.z());
+        rays.tnear[k] = 0.0f;
+        rays.tfar[k] = std::numeric_limits<float>::infinity();
+        rays.time[k] = 0.0f;
+        rays.mask[k] = ~0u;
+        rays.id[k] = static_cast<unsigned>(k);
+        rays.flags[k] = 0;
+      }
+      rtcOccluded4(valid, scene, &context, &rays);
+      int seen = 0;
+      for (int k = 0; k < count; ++k)
+        seen += rays.tfar[k] >= 0.0f ? 1 : 0;  // Embree sets tfar to -inf when blocked
+      return seen;
     };
     // Four rays spread over the disc first: when they agree, the point is taken as wholly lit
     // or wholly shadowed; in a penumbra all f.rays are traced.
     const int stride = f.rays / 4;
-    int seen = 0;
-    for (int i = 1; i < f.rays; i += stride) seen += lit(i) ? 1 : 0;
+    if (stride == 1) return seenOf({0, 1, 2, 3}, 4) / 4.0;
+    int seen = seenOf({1, 1 + stride, 1 + 2 * stride, 1 + 3 * stride}, 4);
     if (seen == 0 || seen == 4) return seen / 4.0;
-    for (int i = 0; i < f.rays; ++i)
-      if (i % stride != 1) seen += lit(i) ? 1 : 0;
+    std::array<int, 4> ids{};
+    int count = 0;
+    for (int i = 0; i < f.rays; ++i) {
+      if (i % stride == 1) continue;
+      ids[static_cast<std::size_t>(count++)] = i;
+      if (count == 4) {
+        seen += seenOf(ids, 4);
+        count = 0;
+      }
+    }
+    if (count > 0) seen += seenOf(ids, count);
     return static_cast<double>(seen) / f.rays;
   }
 
@@ -479,9 +502,7 @@ struct Tracer {
     const double opaque = std::min(hit.distance, floorT);
     if (out.link >= 0 && out.depth >= opaque) out.link = -1;  // below the floor
     for (const ContactMarker& m : markers) {
-      // The bound grows by the lines' width at the marker's far side.
-      const double margin = 1.5 * pixelAngle * ((m.boundCentre - origin).norm() + m.boundRadius);
-      if (sphereEntry(origin, d, m.boundCentre, m.boundRadius + margin) >= opaque) continue;
+      if (sphereEntry(origin, d, m.boundCentre, m.cullRadius) >= opaque) continue;
       const double ts = sphereEntry(origin, d, m.point, m.radius);
       if (ts < opaque) {
         const Vector3 normal = (origin + ts * d - m.point).normalized();
@@ -704,6 +725,7 @@ Image render(const World& world, const RenderRequest& request) {
       if (!mesh) continue;
       const Transform pose = bodyPose(world, body);
       for (const Vector3& v : mesh->vertices) lowest = std::min(lowest, (pose * v).z());
+      f.pieces.push_back(boundingSphere(world, std::span<const BodyRef>(&body, 1)));
     }
     if (lowest < kInfinity && std::isfinite(f.casters.radius)) {
       f.height = lowest - 0.005 * f.casters.radius;
@@ -718,7 +740,7 @@ Image render(const World& world, const RenderRequest& request) {
                                    : Vector3::UnitZ();
       f.lightU = f.light.unitOrthogonal();
       f.lightV = f.light.cross(f.lightU);
-      f.rays = request.samples > 1 ? kShadowRays / 2 : kShadowRays;
+      f.rays = request.samples > 1 ? 4 : kShadowRays;
       for (int i = 0; i < f.rays; ++i) {
         const double r = kLightRadius * std::sqrt((i + 0.5) / f.rays);
         const double a = i * 2.399963229728653;  // the golden angle
@@ -735,6 +757,11 @@ Image render(const World& world, const RenderRequest& request) {
   const double aspect = static_cast<double>(request.width) / request.height;
   tracer.pixelAngle = 2.0 * scale / request.height;
   tracer.sampleAngle = tracer.pixelAngle / n;
+  // A marker's bound grows by its lines' width (and soft edge) at its far side.
+  for (ContactMarker& m : tracer.markers)
+    m.cullRadius =
+        m.boundRadius + 1.5 * tracer.pixelAngle *
+                            ((m.boundCentre - request.camera.position).norm() + m.boundRadius);
   // Each column's offset along the camera's x axis, the same for every row.
   std::vector<Eigen::Vector3f> across(static_cast<std::size_t>(w));
   const Eigen::Vector3f right = axes.col(0).cast<float>();
