@@ -58,7 +58,9 @@ def test_render_equals_the_command_line(graspit_data, graspkit_exe, tmp_path):
                           out=tmp_path / "py.png")
     assert pixels.shape == (120, 160, 3) and pixels.dtype == np.uint8
     run_cli(graspkit_exe, "render", str(world_file), "--out", str(tmp_path / "cli.png"),
-            "--size", "160x120", "--camera", "iso", "--contacts")
+            "--size", "160x120", "--camera", "iso", "--contacts",
+            # World.render draws the world as it is: no floor, a solid hand, the files' colours.
+            "--no-floor", "--hand", "solid", "--file-colours")
     np.testing.assert_array_equal(read_png(tmp_path / "cli.png"), pixels)
     np.testing.assert_array_equal(read_png(tmp_path / "py.png"), pixels)
 

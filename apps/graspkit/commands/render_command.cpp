@@ -51,6 +51,18 @@ void drawLabel(Image& image, const std::string& label) {
   drawText(image, 2, 2, label, {40, 40, 40}, scale);
 }
 
+// --hand: auto draws a grasp (a plan's, or any picture with contacts) in outline, so that no
+// finger hides a contact, and a bare world solid.
+HandStyle handStyleFor(const RenderOptions& options, const SceneFrame& frame) {
+  if (options.hand == "auto")
+    return frame.fromPlan || options.contacts ? HandStyle::Outline : HandStyle::Solid;
+  const std::optional<HandStyle> style = handStyleNamed(options.hand);
+  if (!style)
+    throw Error(
+        fmt::format("--hand: '{}' is not auto, solid, outline or transparent", options.hand));
+  return *style;
+}
+
 }  // namespace
 
 ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, double aspect) {
@@ -84,6 +96,15 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
       ->capture_default_str();
   cmd->add_flag("--no-labels", options.noLabels,
                 "Plans: no rank, epsilon and volume in each tile's corner");
+  cmd->add_flag("--no-floor", options.noFloor,
+                "No floor under the hand and object, and so no shadows");
+  cmd->add_option("--hand", options.hand,
+                  "How the hand is drawn: solid, outline (edges over a faint fill) or "
+                  "transparent; auto: outline for a plan's grasps and with --contacts, else solid")
+      ->check(CLI::IsMember({"auto", "solid", "outline", "transparent"}))
+      ->capture_default_str();
+  cmd->add_flag("--file-colours", options.fileColours,
+                "Keep the files' colours even where the hand's is alike the object's");
   cmd->add_option("--samples", options.samples, "Rays per pixel side (2: 4 rays, smoother edges)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
@@ -108,6 +129,10 @@ int runRender(const RenderOptions& options, std::ostream& out) {
     request.samples = options.samples;
     request.camera = chooseCamera(frame, options.camera, static_cast<double>(width) / height);
     request.contacts = frame.contacts;
+    request.floor = !options.noFloor;
+    request.focus = frame.focus;
+    request.hand = handStyleFor(options, frame);
+    request.separateColours = !options.fileColours;
     tiles.push_back(render(frame.world, request));
     if (frame.fromPlan && !options.noLabels) drawLabel(tiles.back(), labelOf(frame));
   }

@@ -22,7 +22,10 @@ struct RenderOptions {
   int top = 20;
   int columns = 0;
   int samples = 1;
-  bool noLabels = false;  // plans: no "#rank eps vol" in the tiles' corners
+  bool noLabels = false;      // plans: no "#rank eps vol" in the tiles' corners
+  bool noFloor = false;       // no floor and no shadows
+  std::string hand = "auto";  // solid, outline, transparent; auto: outline for grasps
+  bool fileColours = false;   // keep a hand's colour even when it is alike the object's
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);

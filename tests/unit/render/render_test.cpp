@@ -15,6 +15,7 @@
 #include "graspkit/io/gltf/gltf_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/body.hpp"
+#include "graspkit/model/robot.hpp"
 #include "graspkit/model/world.hpp"
 #include "graspkit/render/image.hpp"
 #include "graspkit/render/render.hpp"
@@ -159,6 +160,163 @@ TEST(Render, ContactMarkerLandsOnTheContactsPixel) {
   EXPECT_NEAR(at->x(), 160.0 + f * 17.0 / 290.0, 1e-9);
   EXPECT_NEAR(at->y(), 120.0 + f * 9.0 / 290.0, 1e-9);
   EXPECT_FALSE(projectPoint(request.camera, 320, 240, Vector3(0, 0, 10)));  // behind
+}
+
+// A hand of one link, its palm a box of half extents `h` at `at`, in `material`'s colour.
+void addPalmHand(World& world, const Vector3& h, const Vector3& at, Material material) {
+  auto palm = std::make_shared<BodyModel>();
+  palm->name = "palm";
+  palm->mesh = box(h);
+  palm->material = material;
+  auto model = std::make_shared<RobotModel>();
+  model->name = "paddle";
+  model->palm = palm;
+  const int robot = world.addRobot(Robot(model));
+  world.setRobotPose(robot, makeTransform(at, Quaternion::Identity()));
+}
+
+int redness(const std::array<std::uint8_t, 3>& p) {
+  return p[0] - std::max(p[1], p[2]);
+}
+
+// A metal box with a contact on its face, seen head-on, and a metal palm between the camera and
+// the contact: solid, the palm hides the contact's marker; outline and transparent show it.
+TEST(Render, OutlineHandShowsAContactTheFingerHides) {
+  World world;
+  addBody(world, box(Vector3(40, 25, 10)), Vector3(0, 0, -300.0), Material::Metal);
+  addPalmHand(world, Vector3(20, 20, 5), Vector3(0, 0, -250.0), Material::Metal);
+  RenderRequest request = headOn(320, 240, 0.6);
+  Contact contact;
+  contact.body2 = BodyRef::body(0);
+  contact.position2 = Vector3(3.0, -2.0, -290.0);
+  contact.normal = Vector3::UnitZ();
+  contact.mu = 0.5;
+  request.contacts = {contact};
+  const auto at = projectPoint(request.camera, 320, 240, contact.position2);
+  ASSERT_TRUE(at);
+  const int x = static_cast<int>(at->x()), y = static_cast<int>(at->y());
+  const auto solid = render(world, request).pixel(x, y);
+  EXPECT_LT(redness(solid), 10) << "solid palm: " << +solid[0] << " " << +solid[1];
+  request.hand = HandStyle::Outline;
+  const Image outline = render(world, request);
+  EXPECT_GT(redness(outline.pixel(x, y)), 100);
+  request.hand = HandStyle::Transparent;
+  EXPECT_GT(redness(render(world, request).pixel(x, y)), 40);
+  // The palm's silhouette is drawn dark in outline: its left edge (x = -20 at z = -245) is a
+  // dark line where the box behind it shows grey on both sides.
+  const auto edge = projectPoint(request.camera, 320, 240, Vector3(-20.0, 10.0, -245.0));
+  ASSERT_TRUE(edge);
+  int darkest = 255;
+  for (int dx = -2; dx <= 2; ++dx)
+    darkest = std::min<int>(
+        darkest, outline.pixel(static_cast<int>(edge->x()) + dx, static_cast<int>(edge->y()))[1]);
+  const auto inside = outline.pixel(static_cast<int>(edge->x()) + 8, static_cast<int>(edge->y()));
+  EXPECT_LT(darkest, inside[1] / 2);
+  // Without a hand in the way, the solid picture shows the marker too.
+  World bare;
+  addBody(bare, box(Vector3(40, 25, 10)), Vector3(0, 0, -300.0), Material::Metal);
+  request.hand = HandStyle::Solid;
+  EXPECT_GT(redness(render(bare, request).pixel(x, y)), 100);
+}
+
+// A sphere floating over the floor (a small cube lower down sets the floor's height): the floor
+// straight under the sphere is in its shadow, darker than the floor to its left and right.
+TEST(Render, FloorShowsTheShadowUnderABody) {
+  World world;
+  const double R = 30.0;
+  const int sphere = addBody(world, test::icosphere(R, 3), Vector3(0, 0, 30.0));
+  const int cube = addBody(world, box(Vector3(5, 5, 5)), Vector3(0, -160.0, -15.0));
+  RenderRequest request;
+  request.width = 320;
+  request.height = 240;
+  request.camera = frameBodies(world, {}, Vector3(1.0, -1.3, 0.9), 320.0 / 240.0);
+  request.focus = {BodyRef::body(sphere), BodyRef::body(cube)};
+  const Image bare = render(world, request);
+  request.floor = true;
+  const Image floor = render(world, request);
+  // The floor lies just under the cube's bottom (z = -20), by at most 1 % of the focus radius.
+  const double z = -20.5;
+  const Matrix3 axes = request.camera.orientation.toRotationMatrix();
+  const Vector3 right(axes(0, 0), axes(1, 0), 0.0);
+  const auto pixelOf = [&](const Vector3& p) {
+    const auto at = projectPoint(request.camera, 320, 240, p);
+    EXPECT_TRUE(at);
+    return std::pair<int, int>(static_cast<int>(at->x()), static_cast<int>(at->y()));
+  };
+  const auto luminance = [](const std::array<std::uint8_t, 3>& p) { return p[0] + p[1] + p[2]; };
+  const auto [bx, by] = pixelOf(Vector3(0, 0, z));
+  EXPECT_TRUE(isBackground(bare, bx, by)) << "the sphere covers the point under it";
+  const int under = luminance(floor.pixel(bx, by));
+  for (const double side : {-90.0, 90.0}) {
+    const auto [sx, sy] = pixelOf(Vector3(0, 0, z) + side * right.normalized());
+    EXPECT_TRUE(isBackground(bare, sx, sy));
+    const int lit = luminance(floor.pixel(sx, sy));
+    EXPECT_LT(lit, 3 * 250) << "the floor is drawn beside the sphere";
+    EXPECT_GT(lit, 3 * 150);
+    EXPECT_LT(under, 0.8 * lit) << "side " << side;
+  }
+  // A camera below the floor sees no floor.
+  request.camera = frameBodies(world, {}, Vector3(1.0, -1.3, -0.9), 320.0 / 240.0);
+  request.floor = false;
+  const Image below = render(world, request);
+  request.floor = true;
+  EXPECT_EQ(render(world, request).rgb, below.rgb);
+}
+
+TEST(Render, AlikeHandAndObjectColoursArePulledApart) {
+  // The project's bh8 palm and its mug: greys 0.3 apart in lightness, alike once shaded.
+  const Colour grey{0.55f, 0.57f, 0.6f}, lightGrey{0.85f, 0.88f, 0.92f};
+  ASSERT_LT(colourDistance(grey, lightGrey), kAlikeColourDistance);
+  const Colour hand = separatedColour(grey, lightGrey);
+  EXPECT_GT(colourDistance(hand, lightGrey), kAlikeColourDistance);
+  EXPECT_EQ(hand, kHandPalette[0]);
+  // Colours already apart stay as they are.
+  const Colour dark{0.1f, 0.1f, 0.1f};
+  EXPECT_EQ(separatedColour(dark, lightGrey), dark);
+  const Colour red{0.9f, 0.1f, 0.1f};
+  EXPECT_EQ(separatedColour(red, grey), red);
+  // An object in the palette's first colour: the hand takes the next one apart from it.
+  const Colour blue = separatedColour(kHandPalette[0], kHandPalette[0]);
+  EXPECT_GT(colourDistance(blue, kHandPalette[0]), kAlikeColourDistance);
+  // Any object colour leaves some palette colour apart from it.
+  for (float r = 0.0f; r <= 1.0f; r += 0.25f)
+    for (float g = 0.0f; g <= 1.0f; g += 0.25f)
+      for (float b = 0.0f; b <= 1.0f; b += 0.25f)
+        EXPECT_GE(colourDistance(separatedColour(Colour{r, g, b}, Colour{r, g, b}), {r, g, b}),
+                  kAlikeColourDistance);
+
+  // In a picture: a metal palm before a metal box is drawn in the palette's colour when asked.
+  World world;
+  addBody(world, box(Vector3(40, 25, 10)), Vector3(0, 0, -300.0), Material::Metal);
+  addPalmHand(world, Vector3(20, 20, 5), Vector3(0, 0, -250.0), Material::Metal);
+  const Colour metal = surfaceColour(world, BodyRef::body(0));
+  EXPECT_EQ(metal, materialColour(Material::Metal));
+  RenderRequest request = headOn(160, 120, 0.6);
+  const Image files = render(world, request);
+  request.separateColours = true;
+  const Image apart = render(world, request);
+  const auto palm = files.pixel(80, 60), bluePalm = apart.pixel(80, 60);
+  EXPECT_NEAR(palm[0], palm[2], 30);         // the files' grey
+  EXPECT_GT(bluePalm[2], bluePalm[0] + 60);  // the palette's blue
+  // The box beside the palm (x = 58: inside the box's 27 pixels, outside the palm's 16) keeps
+  // its own colour.
+  EXPECT_EQ(files.pixel(58, 60), apart.pixel(58, 60));
+  EXPECT_FALSE(isBackground(files, 58, 60));
+}
+
+// GraspIt!'s plannerMug: the Barrett's palm is near black, its mug glass light blue; colours
+// already apart are kept, and the palm stays apart from the mug.
+TEST(Render, PlannerMugKeepsColoursAlreadyApart) {
+  GRASPKIT_REQUIRE_SHARED();
+  const World world = loadWorldFile(*test::graspitDataDir() / "worlds" / "plannerMug.xml");
+  const GraspSubject subject = graspSubject(world);
+  ASSERT_TRUE(subject.hand && subject.object);
+  const Colour mug = surfaceColour(world, *subject.object);
+  const Colour palm = surfaceColour(world, BodyRef::robotBase(*subject.hand));
+  EXPECT_GT(colourDistance(palm, mug), kAlikeColourDistance);
+  EXPECT_EQ(separatedColour(palm, mug), palm);
+  // The same palm beside a mug of its own colour is pulled apart.
+  EXPECT_GT(colourDistance(separatedColour(palm, palm), palm), kAlikeColourDistance);
 }
 
 TEST(Render, FramedSphereFillsTheViewFromEverySide) {
