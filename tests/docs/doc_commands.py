@@ -60,6 +60,10 @@ COVERED_ELSEWHERE = [
     (re.compile(r"^PYTHONPATH=build/bindings/python /usr/bin/python3 examples/python/"),
      "python.module (tests/python/test_examples.py)"),
 ]
+# `graspkit serve` runs until it is stopped: its lines are checked against --help and left to the
+# tests that start and drive a server.
+SERVE = re.compile(r"^(?:\./build/apps/graspkit/)?graspkit (?:-q )?serve\b")
+SERVE_TESTS = "editor.page, cli.serve_requests"
 NUMBER = r"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?"
 # A number standing alone (not `chain0`, `d0+25` or a version 1.0.0), and whether a unit of time
 # follows it.
@@ -373,6 +377,12 @@ def main():
                 if problem := check_synopsis(graspkit, program):
                     failures.append(f"{where}:{line}: {text}\n  {problem}")
             if command is None:
+                last = (line, text, False)
+                continue
+            if SERVE.match(command):
+                if command == text and (problem := check_synopsis(graspkit, program)):
+                    failures.append(f"{where}:{line}: {text}\n  {problem}")
+                elsewhere.setdefault(SERVE_TESTS, []).append(f"{where}:{line}")
                 last = (line, text, False)
                 continue
             if "../shared" in command and shared is None:

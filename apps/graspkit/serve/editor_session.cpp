@@ -617,8 +617,14 @@ std::string EditorSession::picturePng(const json& args) const {
     const std::vector<BodyRef> focus = handAndObject(world);
     request.camera = namedView(world, "auto", focus, double(request.width) / request.height);
   }
+  // graspkit render's look: a floor with shadows, colours kept apart and, with contacts
+  // marked, the hand in outline so that none is hidden.
+  request.floor = true;
+  request.focus = handAndObject(world);
+  request.separateColours = true;
   if (args.value("contacts", true)) {
     for (const Contact& c : robotContacts(world, hand_, &object_)) request.contacts.push_back(c);
+    if (!request.contacts.empty()) request.hand = HandStyle::Outline;
   }
   return pngBytes(render(world, request));
 }
