@@ -100,9 +100,31 @@ const relative = (a, b) => Math.abs(a - b) / Math.max(1e-12, Math.abs(b));
     await page.goto(`${base}?token=${token}`);
     await page.waitForFunction('window.graspkitEditor && window.graspkitEditor.ready', { timeout: 60000 });
     const start = await editor(page, () => window.graspkitEditor.state);
+    // What a measure at rest uses: GraspIt!'s qhull, as graspkit grasp.
+    const closedMethod = start.quality.method;
+    check(closedMethod.includes('GraspIt'), `the state is measured by ${closedMethod}`);
     const mug = start.bodies[start.object].t.map((v) => v * 1000);
     check(start.collisions.length === 0, `the world starts with collisions: ${JSON.stringify(start.collisions)}`);
     const redBefore = await redPixels(page);
+
+    // A real drag of the on-screen handle: the mouse on the handle's centre (the free move in the
+    // view plane), 60 px to the right; the hand moves, and the drag is one undo step.
+    const [hx, hy] = await editor(page, (t) => window.graspkitEditor.project(t.map((v) => v / 1000)),
+      start.hand.pose.translation);
+    await page.mouse.move(hx, hy);
+    await page.mouse.down();
+    for (let i = 1; i <= 6; ++i) await page.mouse.move(hx + 10 * i, hy, { steps: 2 });
+    await page.mouse.up();
+    await editor(page, () => window.graspkitEditor.idle());
+    const dragged = await editor(page, () => window.graspkitEditor.state);
+    const shift = Math.hypot(...dragged.hand.pose.translation.map((v, i) => v - start.hand.pose.translation[i]));
+    check(shift > 1, `dragging the handle moved the hand ${shift} mm`);
+    check(dragged.undo === start.undo + 1, `the mouse drag made ${dragged.undo - start.undo} undo steps, not 1`);
+    check(dragged.quality.method === closedMethod, `after the drag the grasp was measured by ${dragged.quality.method}`);
+    await page.click('#undo');
+    await editor(page, () => window.graspkitEditor.idle());
+    const back = await editor(page, () => window.graspkitEditor.state);
+    check(JSON.stringify(back.hand.pose) === JSON.stringify(start.hand.pose), 'undo did not undo the mouse drag');
 
     // Into the mug: the collision is shown (listed, and the links glow red); one undo step.
     await editor(page, (to) => window.graspkitEditor.drag(to), mug);
@@ -112,7 +134,7 @@ const relative = (a, b) => Math.abs(a - b) / Math.max(1e-12, Math.abs(b));
     check(collisionText.startsWith('collisions:'), `the panel says '${collisionText}' inside the mug`);
     const redInside = await redPixels(page);
     check(redInside > redBefore + 200, `colliding links are not drawn red (${redBefore} -> ${redInside} red pixels)`);
-    check(inside.undo === start.undo + 1, `a drag made ${inside.undo - start.undo} undo steps, not 1`);
+    check(inside.undo === back.undo + 1, `a drag made ${inside.undo - back.undo} undo steps, not 1`);
     await page.screenshot({ path: path.join(outDir, 'editor_collision.png') });
     // And back out.
     await editor(page, (to) => window.graspkitEditor.drag(to), start.hand.pose.translation);

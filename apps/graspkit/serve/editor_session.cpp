@@ -37,7 +37,7 @@ struct EditorSession::PlanRun {
   double seconds = 0.0;  // the budget asked, 0 for a step budget
   std::optional<host::PlanResult> result;
   std::string error;
-  bool collected = false;
+  std::atomic<bool> collected{false};  // the thread is done with the session
 };
 
 namespace {
