@@ -235,6 +235,10 @@ const relative = (a, b) => Math.abs(a - b) / Math.max(1e-12, Math.abs(b));
     check(JSON.stringify(after.hand) === JSON.stringify(before.hand), 'a malformed request changed the hand');
 
     // Plan for 2 s; the server keeps answering meanwhile; step through the grasps.
+    // Every energy the page offers is one the planner knows.
+    const energies = await page.$$eval('#plan-energy option', (options) => options.map((o) => o.value));
+    const known = cli(['plan', '--help']);
+    for (const energy of energies) check(known.includes(energy), `the page offers energy '${energy}' plan does not know`);
     await page.$eval('#plan-seconds', (input) => { input.value = '2'; });
     await page.click('#plan');
     let slowest = 0;

@@ -118,8 +118,10 @@ function start() {
   ui.quality = element('div', { id: 'quality' });
   ui.collisions = element('div', { id: 'collisions' });
   ui.planSeconds = element('input', { id: 'plan-seconds', type: 'number', value: '5', step: '1', min: '0.1' });
-  ui.planEnergy = element('select', { id: 'plan-energy' }, ['contact', 'potential_quality', 'autograsp_quality']
+  ui.planEnergy = element('select', { id: 'plan-energy' }, ['contact', 'potential-quality', 'guided-potential-quality', 'autograsp-quality', 'strict-autograsp']
     .map((name) => element('option', { value: name, text: name })));
+  ui.planSeed = element('input', { id: 'plan-seed', type: 'number', value: '1', step: '1', min: '0' });
+  ui.planTop = element('input', { id: 'plan-top', type: 'number', value: '10', step: '1', min: '1' });
   ui.progress = element('progress', { id: 'plan-progress', max: '1', value: '0' });
   ui.planText = element('span', { id: 'plan-text' });
   ui.graspName = element('span', { id: 'grasp-name', text: 'no grasps' });
@@ -151,6 +153,7 @@ function start() {
     element('h3', { text: 'Grasp' }), ui.quality, ui.collisions,
     element('h3', { text: 'Planner' }),
     element('div', { class: 'row' }, ['seconds ', ui.planSeconds, ' ', ui.planEnergy]),
+    element('div', { class: 'row' }, ['seed ', ui.planSeed, ' best ', ui.planTop]),
     element('div', { class: 'row' }, [button('plan', 'Plan', startPlan),
       button('plan-stop', 'Stop', () => request('plan_stop').catch((e) => say(e.message, true))),
       ' ', ui.progress]),
@@ -332,7 +335,8 @@ function start() {
   // ---- planner, grasps, validation ----
   let planTimer = null;
   async function startPlan() {
-    await act('plan', { seconds: Number(ui.planSeconds.value), energy: ui.planEnergy.value });
+    await act('plan', { seconds: Number(ui.planSeconds.value), energy: ui.planEnergy.value,
+      seed: Number(ui.planSeed.value), top: Number(ui.planTop.value) });
     editor.planDone = false;
     ui.planText.textContent = 'planning…';
     planTimer = setInterval(pollPlan, 250);
