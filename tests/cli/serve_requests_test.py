@@ -3,6 +3,8 @@
 
 Usage: serve_requests_test.py GRASPKIT SOURCE_DIR WORK_DIR
 
+A robot file alone opens as a bare hand: it closes, and plan and validate say there is no object.
+
 Every request without the token, or naming another host, is refused (403); malformed bodies,
 bad numbers and indices get 400 with a message; files outside the allowed folders are refused
 (403) and not written, symbolic links included; an oversized body gets 413; none of it changes
@@ -159,6 +161,23 @@ def main():
             server.kill()
             code = "hung"
     check("SIGTERM stops the server with status 0", code == 0, code)
+
+    # A bare hand (a robot file, no object): shaped and closed; nothing to plan or validate.
+    global WORLD
+    WORLD = SOURCE / "models/robots/parallel_jaw/parallel_jaw.xml"
+    server, port, token = start()
+    auth = {"X-Graspkit-Token": token}
+    try:
+        status, data = request(port, "POST", "/api/autograsp", "{}", auth)
+        answer = json.loads(data)
+        check("a bare hand closes", status == 200 and answer["object"] is None and
+              answer["quality"]["epsilon"] is None and answer["ended"], (status, answer))
+        for action in ("plan", "validate"):
+            status, data = request(port, "POST", f"/api/{action}", "{}", auth)
+            check(f"{action} without an object: 409", status == 409, (status, data))
+    finally:
+        server.send_signal(signal.SIGTERM)
+        server.wait(timeout=20)
     if failures:
         sys.exit(f"{len(failures)} failed: {', '.join(failures)}")
 

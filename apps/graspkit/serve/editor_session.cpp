@@ -198,7 +198,8 @@ void EditorSession::open(const std::filesystem::path& input) {
     session = host::WorldSession::load(input, options_.load);
   }
   const int hand = host::defaultHand(session.world);
-  const BodyRef object = host::defaultObject(session.world);
+  std::optional<BodyRef> object;
+  if (session.world.firstGraspable()) object = host::defaultObject(session.world);
   session_ = std::move(session);
   hand_ = hand;
   object_ = object;
@@ -206,6 +207,13 @@ void EditorSession::open(const std::filesystem::path& input) {
   undo_.clear();
   redo_.clear();
   lastGroup_.clear();
+}
+
+const BodyRef& EditorSession::object() const {
+  if (!object_)
+    throw RequestError(409,
+                       "the world has no graspable body: there is no grasp to plan or validate");
+  return *object_;
 }
 
 const std::vector<std::string>& EditorSession::actionNames() {
@@ -339,18 +347,32 @@ json EditorSession::state(bool preview) const {
     collisions.push_back({bodyName(world, pair.first), bodyName(world, pair.second)});
   GraspRequest request;
   if (preview) request.wrenchSpace.method = HullMethod::NearestFacet;
-  const Grasp grasp = analyzeGrasp(world, hand_, object_, robotContacts(world, hand_), request);
   json contacts = json::array();
   int others = 0;
-  for (const Contact& c : grasp.contacts) {
-    if (!(c.body2 == object_)) {
-      ++others;
-      continue;
+  // A bare hand (no object) has no grasp: its contacts are all "others", its quality null.
+  json quality = {{"epsilon", nullptr},
+                  {"volume", nullptr},
+                  {"force_closure", false},
+                  {"contacts", 0},
+                  {"method", epsilonMethodName(request.wrenchSpace.method)}};
+  const std::vector<Contact> touching = robotContacts(world, hand_);
+  if (!object_) others = static_cast<int>(touching.size());
+  if (object_) {
+    const Grasp grasp = analyzeGrasp(world, hand_, *object_, touching, request);
+    for (const Contact& c : grasp.contacts) {
+      if (!(c.body2 == *object_)) {
+        ++others;
+        continue;
+      }
+      contacts.push_back({{"link", bodyName(world, c.body1)},
+                          {"point", metres(c.position2)},
+                          {"normal", vec(c.normal)},
+                          {"mu", c.mu}});
     }
-    contacts.push_back({{"link", bodyName(world, c.body1)},
-                        {"point", metres(c.position2)},
-                        {"normal", vec(c.normal)},
-                        {"mu", c.mu}});
+    quality["epsilon"] = grasp.epsilon;
+    quality["volume"] = grasp.volume;
+    quality["force_closure"] = grasp.forceClosure;
+    quality["contacts"] = contacts.size();
   }
   return {{"world", session_.file.filename().string()},
           {"hand",
@@ -359,17 +381,12 @@ json EditorSession::state(bool preview) const {
             {"dofs", dofs},
             {"eigengrasps", eigen},
             {"bodies", handNames}}},
-          {"object", bodyName(world, object_)},
+          {"object", object_ ? json(bodyName(world, *object_)) : json(nullptr)},
           {"bodies", bodies},
           {"collisions", collisions},
           {"contacts", contacts},
           {"other_contacts", others},
-          {"quality",
-           {{"epsilon", grasp.epsilon},
-            {"volume", grasp.volume},
-            {"force_closure", grasp.forceClosure},
-            {"contacts", contacts.size()},
-            {"method", epsilonMethodName(request.wrenchSpace.method)}}},
+          {"quality", quality},
           {"undo", undo_.size()},
           {"redo", redo_.size()},
           {"grasps", grasps_.size()}};
@@ -466,16 +483,17 @@ json EditorSession::plan(const json& args) {
   settings.threads = static_cast<int>(optionalNumber(args, "threads", 1, 0, 256));
   auto world = std::make_shared<const World>(session_.world.clone());
   // Checks the settings now, so that a bad one is this request's error, not the run's.
-  host::planningRequest(world, hand_, object_, settings);
+  const BodyRef target = object();
+  host::planningRequest(world, hand_, target, settings);
   host::planningBudget(settings);
   auto run = std::make_unique<PlanRun>();
   run->seconds = settings.seconds.value_or(0.0);
   PlanRun* raw = run.get();
-  run->thread = std::thread([this, raw, world, settings] {
+  run->thread = std::thread([this, raw, world, settings, target] {
     std::optional<host::PlanResult> result;
     std::string error;
     try {
-      result = host::planGrasps(world, hand_, object_, settings, [raw](const PlannerProgress& p) {
+      result = host::planGrasps(world, hand_, target, settings, [raw](const PlannerProgress& p) {
         std::lock_guard lock(raw->mutex);
         raw->progress = p;
         return !raw->stop.load();
@@ -557,6 +575,7 @@ json EditorSession::validate(const json& args) const {
   World world;
   {
     std::lock_guard lock(mutex_);
+    object();  // refused without one
     world = session_.world.clone();
   }
   return validationJson(host::validateWorld(world, request));
@@ -623,7 +642,8 @@ std::string EditorSession::picturePng(const json& args) const {
   request.focus = handAndObject(world);
   request.separateColours = true;
   if (args.value("contacts", true)) {
-    for (const Contact& c : robotContacts(world, hand_, &object_)) request.contacts.push_back(c);
+    if (object_)
+      for (const Contact& c : robotContacts(world, hand_, &*object_)) request.contacts.push_back(c);
     if (!request.contacts.empty()) request.hand = HandStyle::Outline;
   }
   return pngBytes(render(world, request));

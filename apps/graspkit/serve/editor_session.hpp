@@ -96,7 +96,8 @@ class EditorSession {
   mutable std::mutex mutex_;  // the world, the undo lists and the grasps
   host::WorldSession session_;
   int hand_ = 0;
-  BodyRef object_;
+  std::optional<BodyRef> object_;  // none: a bare hand to shape (no grasp to measure)
+  const BodyRef& object() const;   // throws RequestError (409) when there is none
   std::vector<World> undo_, redo_;
   std::string lastGroup_;  // a drag's requests share one undo step
   std::vector<EditorGrasp> grasps_;

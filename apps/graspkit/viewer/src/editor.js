@@ -463,7 +463,7 @@ function start() {
     for (const node of scene.children) nodes.set(node.name, node);
     world.add(scene);
     const state = await request('state');
-    ui.title.textContent = `${state.world}: ${state.hand.name} and ${state.object}`;
+    ui.title.textContent = `${state.world}: ${state.hand.name}${state.object ? ` and ${state.object}` : " (no object)"}`;
     frame(state);
     show(state);
     if (state.grasps > 0) {
