@@ -42,11 +42,15 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
     lua_createtable(L, static_cast<int>(g.validation.size()), 0);
     for (std::size_t k = 0; k < g.validation.size(); ++k) {
       const DatasetDirection& d = g.validation[k];
-      lua_createtable(L, 0, 6);
+      lua_createtable(L, 0, 7);
       pushVector3(L, d.direction);
       lua_setfield(L, -2, "direction");
-      lua_pushboolean(L, d.held);
-      lua_setfield(L, -2, "held");
+      if (d.tried) {  // held nil: not tried (an earlier direction let go)
+        lua_pushboolean(L, d.held);
+        lua_setfield(L, -2, "held");
+      }
+      lua_pushboolean(L, d.tried);
+      lua_setfield(L, -2, "tried");
       setNumber(L, "slip", d.slip);
       setNumber(L, "turn", d.turn);
       setNumber(L, "seconds", d.seconds);
@@ -79,7 +83,8 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
 
 // graspkit.load_dataset(file) -> {object = {file, name, mass}, hand = {file, name},
 //   engine_version, seed, grasps = {{pose, pregrasp, open_dofs, closed_dofs, epsilon, volume,
-//   force_closure, held, validation = {{direction, held, slip, turn, seconds, failed}, ...},
+//   force_closure, held, validation = {{direction, held, slip, turn, seconds, failed, tried},
+//   ...} (held nil where not tried),
 //   breakaway = {{engaged, value}, ...}, contacts = {{point, normal}, ...}},
 //   ...}}
 int loadDataset(lua_State* L) {

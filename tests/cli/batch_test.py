@@ -280,18 +280,46 @@ for name, entry in entries.items():
 
 # A validated batch keeps each direction's result: held in all six exactly when the grasp is
 # held, and a direction held exactly when the object stayed within validation's limits (5 mm of
-# slip, 15 degrees of turn) and the simulation did not fail.
-validated = WORK / "validated"
+# slip, 15 degrees of turn) and the simulation did not fail. By default a grasp's directions stop
+# at the first it lets go (-1 after it: not tried); --validate-all-directions tries all six, and
+# the two must agree on every label and on every direction both tried.
 (WORK / "two.txt").write_text("objects/object_0000_box.xml\nobjects/object_0001_cylinder.xml\n")
-run = subprocess.run([GRASPKIT, "-q", "batch", "--hand", str(HAND), "--objects",
-                      str(WORK / "two.txt"), "--out", str(validated), "--grasps", "2", "--steps",
-                      "1500", "--validate", "--validate-seconds", "0.25"],
-                     capture_output=True, text=True)
-if run.returncode != 0:
-    fail(f"the validated batch failed ({run.returncode}): {run.stdout}{run.stderr}")
+
+
+def validated_batch(folder, *flags):
+    run = subprocess.run([GRASPKIT, "-q", "batch", "--hand", str(HAND), "--objects",
+                          str(WORK / "two.txt"), "--out", str(folder), "--grasps", "2", "--steps",
+                          "1500", "--validate", "--validate-seconds", "0.25", *flags],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        fail(f"the validated batch {flags} failed ({run.returncode}): {run.stdout}{run.stderr}")
+
+
+validated = WORK / "validated"
+every = WORK / "validated_all"
+validated_batch(validated)
+validated_batch(every, "--validate-all-directions")
 axes = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]
+stopped_early = 0
 for name in ("object_0000_box", "object_0001_cylinder"):
-    with h5py.File(validated / "grasps" / f"{name}.h5", "r") as f:
+    with h5py.File(validated / "grasps" / f"{name}.h5", "r") as f, \
+            h5py.File(every / "grasps" / f"{name}.h5", "r") as a:
+        if a["grasps/qualities/held"][()].tolist() != f["grasps/qualities/held"][()].tolist():
+            fail(f"{name}: labels {f['grasps/qualities/held'][()]} stopping at the first let go, "
+                 f"{a['grasps/qualities/held'][()]} trying all six")
+        for key in ("held", "slip", "turn", "seconds", "failed"):
+            tried = f["grasps/validation/held"][()] != -1
+            mine, theirs = f[f"grasps/validation/{key}"][()], a[f"grasps/validation/{key}"][()]
+            if (mine[tried] != theirs[tried]).any():
+                fail(f"{name}: validation/{key} {mine} where all six gave {theirs}")
+        if (a["grasps/validation/held"][()] == -1).any():
+            fail(f"{name}: --validate-all-directions left {a['grasps/validation/held'][()]}")
+        for row in f["grasps/validation/held"][()]:
+            first_lost = next((k for k in range(6) if row[k] == 0), 6)
+            if any(row[k] != -1 for k in range(first_lost + 1, 6)):
+                fail(f"{name}: directions {row} went on after the first let go")
+            stopped_early += first_lost < 5
+    with h5py.File(every / "grasps" / f"{name}.h5", "r") as f:
         held = f["grasps/qualities/held"][()]
         directions = f["grasps/validation/held"][()]
         slip = f["grasps/validation/slip"][()]
@@ -312,6 +340,8 @@ for name in ("object_0000_box", "object_0001_cylinder"):
                          f"{slip[i][k]} mm, turn {turn[i][k]} rad, failed {failed[i][k]}")
                 if not failed[i][k] and not 0 < seconds[i][k] <= 0.25 + 1e-9:
                     fail(f"{name} grasp {i} direction {k}: ran {seconds[i][k]} s of 0.25")
+if not stopped_early:
+    fail("no grasp let go before its last direction: the stop was not tried")
 # graspkit.load_dataset in Lua against h5py, on one file.
 name = "object_0001_cylinder"
 script = WORK / "read_dataset.lua"

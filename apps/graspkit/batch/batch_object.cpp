@@ -59,6 +59,7 @@ DatasetRequest datasetRequest(const BatchOptions& options, const fs::path& objec
     request.steps = options.steps;
   request.validate = options.validate;
   request.validateSeconds = options.validateSeconds;
+  request.validateAllDirections = options.validateAllDirections;
   request.seed = options.seed;
   return request;
 }

@@ -69,7 +69,10 @@ json settingsJson(const BatchOptions& options) {
     settings["seconds_per_object"] = *options.secondsPerObject;
   else
     settings["steps_per_object"] = options.steps;
-  if (options.validate) settings["validate_seconds"] = options.validateSeconds;
+  if (options.validate) {
+    settings["validate_seconds"] = options.validateSeconds;
+    settings["validate_all_directions"] = options.validateAllDirections;
+  }
   return settings;
 }
 
@@ -106,6 +109,9 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
                   "--validate: simulated seconds per direction")
       ->default_val(defaults.validateSeconds)
       ->check(positiveFinite());
+  cmd->add_flag("--validate-all-directions", options.validateAllDirections,
+                "--validate: try all six directions of every grasp (by default a grasp's "
+                "directions stop at the first it lets go: the same held label, the rest untried)");
   cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
       ->check(seedNumber())
       ->default_val(defaults.seed);

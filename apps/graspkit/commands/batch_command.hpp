@@ -23,6 +23,7 @@ struct BatchOptions {
   std::optional<double> secondsPerObject;
   bool validate = false;
   double validateSeconds = 2.0;
+  bool validateAllDirections = false;  // false: a grasp's directions stop at the first let go
   std::uint64_t seed = 1;
   std::string shard;  // K/N
   double objectTimeout = 1800.0;

@@ -51,7 +51,8 @@ void bindDatasetGrasp(py::module_& m) {
             for (const DatasetDirection& d : g.validation) {
               py::dict entry;
               entry["direction"] = toArray(d.direction);
-              entry["held"] = d.held;
+              entry["held"] = d.tried ? py::object(py::bool_(d.held)) : py::object(py::none());
+              entry["tried"] = d.tried;
               entry["slip_mm"] = d.slip;
               entry["turn_deg"] = d.turn * 180.0 / M_PI;
               entry["seconds"] = d.seconds;
@@ -61,7 +62,8 @@ void bindDatasetGrasp(py::module_& m) {
             return directions;
           },
           "The validation's 6 directions (+x, -x, +y, -y, +z, -z; object frame) as "
-          "graspkit.validate gives them; empty when not validated.")
+          "graspkit.validate gives them; empty when not validated. A direction after the first "
+          "let go is not tried by default in batch (tried False, held None).")
       .def_property_readonly("contact_points",
                              [](const DatasetGrasp& g) { return points(g.contactPoints); })
       .def_property_readonly("contact_normals",
@@ -113,8 +115,9 @@ void bindDatasets(py::module_& m) {
       "plan_dataset",
       [](const std::filesystem::path& hand, const std::filesystem::path& object, int grasps,
          std::optional<std::int64_t> steps, std::optional<double> seconds, std::uint64_t seed,
-         bool validate, double validate_seconds, std::vector<std::filesystem::path> roots,
-         std::vector<std::filesystem::path> package_path, std::string palm) {
+         bool validate, double validate_seconds, bool validate_all_directions,
+         std::vector<std::filesystem::path> roots, std::vector<std::filesystem::path> package_path,
+         std::string palm) {
         DatasetRequest request;
         request.hand = hand;
         request.object = object;
@@ -129,6 +132,7 @@ void bindDatasets(py::module_& m) {
         request.seed = seed;
         request.validate = validate;
         request.validateSeconds = validate_seconds;
+        request.validateAllDirections = validate_all_directions;
         return withWarnings([&] {
           py::gil_scoped_release release;
           return host::planDataset(request);
@@ -138,11 +142,14 @@ void bindDatasets(py::module_& m) {
       py::arg("steps") = py::none(), py::arg("seconds") = py::none(),
       py::arg("seed") = defaults.seed, py::arg("validate") = defaults.validate,
       py::arg("validate_seconds") = defaults.validateSeconds,
+      py::arg("validate_all_directions") = defaults.validateAllDirections,
       py::arg("roots") = std::vector<std::filesystem::path>{},
       py::arg("package_path") = std::vector<std::filesystem::path>{}, py::arg("palm") = "",
       "Plans one object's dataset as `graspkit batch` does for each object: the hand over the "
       "object at the origin, simann, the best `grasps` closed, measured and (validate=True) "
-      "labelled. Budget: steps (default 40000) or seconds. Save it with Dataset.save.");
+      "labelled (validation stops at a grasp's first direction let go unless "
+      "validate_all_directions). Budget: steps (default 40000) or seconds. Save it with "
+      "Dataset.save.");
   const ObjectGeneratorOptions generator;
   m.def(
       "generate_object",

@@ -47,7 +47,8 @@ DatasetGrasp datasetGrasp(const PlannedGrasp& g, const std::optional<ValidationR
   if (label) {
     for (const DirectionResult& r : label->directions) {
       // The object sits at the origin unturned: world directions are the object frame's.
-      d.validation.push_back({r.direction, r.held, r.slip, r.turn, r.seconds, !r.failure.empty()});
+      d.validation.push_back(
+          {r.direction, r.held, r.slip, r.turn, r.seconds, !r.failure.empty(), r.tried});
     }
   }
   for (const Contact& c : g.contactList) {
@@ -87,6 +88,7 @@ GraspDataset planGraspDataset(const DatasetRequest& request) {
   if (request.validate) {
     ValidationRequest validation;
     validation.seconds = request.validateSeconds;
+    validation.allDirections = request.validateAllDirections;
     std::vector<World> worlds;
     for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(plan, g));
     const auto results = validateGrasps(worlds, 0, 0, validation, 1);

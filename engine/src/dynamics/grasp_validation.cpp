@@ -199,6 +199,10 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
   for (int k = 0; k < 6; ++k) {
     DirectionResult& direction = result.directions[k];
     direction.direction = axes[k];
+    if (!request.allDirections && result.directionsHeld < k) {
+      direction.tried = false;
+      continue;
+    }
     if (!settle_failure.empty()) {
       direction.failure = settle_failure;
       continue;

@@ -129,6 +129,45 @@ TEST(GraspValidation, StoppingAtRestAgreesWithTheFullRun) {
   }
 }
 
+// A validation that stops at the first direction let go (as datasets run it) gives the label of
+// one that tries all six, the same results for the directions it tried, and tries exactly those
+// up to the first let go. Across the pads at 1.1 times the tipping pull, +x lets go and the five
+// after it are not tried; at 0.5 times it, whatever the six give, the two runs must agree.
+TEST(GraspValidation, StoppingAtTheFirstLetGoKeepsTheLabel) {
+  const ClosedGripper gripper = closedGripper();
+  ASSERT_GE(gripper.box, 0);
+  const double across = criticalAccelerationAcross(gripper.world, gripper.box);
+  for (const double acceleration : {1.1 * across, 0.5 * across}) {
+    SCOPED_TRACE(acceleration);
+    ValidationRequest request;
+    request.seconds = 1.0;
+    request.gravity = acceleration;
+    const ValidationResult all = validateGrasp(gripper.world, 0, gripper.box, request);
+    request.allDirections = false;
+    const ValidationResult stopped = validateGrasp(gripper.world, 0, gripper.box, request);
+    EXPECT_EQ(stopped.held, all.held);
+    bool let_go = false;
+    for (int k = 0; k < 6; ++k) {
+      SCOPED_TRACE(k);
+      EXPECT_TRUE(all.directions[k].tried);
+      EXPECT_EQ(stopped.directions[k].tried, !let_go);
+      if (let_go) {
+        EXPECT_FALSE(stopped.directions[k].held);
+        continue;
+      }
+      EXPECT_EQ(stopped.directions[k].held, all.directions[k].held);
+      EXPECT_EQ(stopped.directions[k].slip, all.directions[k].slip);
+      EXPECT_EQ(stopped.directions[k].seconds, all.directions[k].seconds);
+      let_go = !all.directions[k].held;
+    }
+    if (acceleration > across) {
+      EXPECT_FALSE(all.directions[kPlusX].held);
+      EXPECT_FALSE(stopped.directions[kMinusX].tried);
+      EXPECT_EQ(stopped.directionsHeld, 0);
+    }
+  }
+}
+
 // A rigid squeeze leaves its internal force undetermined: the Barrett closed on generated box 0
 // of seed 11 (a planned grasp of the dataset issue's objects) holds the box still while the
 // solver passes force between a finger's contacts in jumps of more than 5 %, so the force test

@@ -5,7 +5,7 @@
 //   /grasps/qualities/epsilon, .../volume              N
 //   /grasps/qualities/force_closure                    N, uint8
 //   /grasps/qualities/held                             N, int8 (-1: not validated)
-//   /grasps/validation/held (int8, -1: not validated), .../failed (uint8),
+//   /grasps/validation/held (int8, -1: not validated or not tried), .../failed (uint8),
 //     .../slip (mm), .../turn (rad), .../seconds       N x 6: each direction of the validation
 //   /grasps/validation/directions                      6 x 3: +x, -x, +y, -y, +z, -z
 //   /grasps/contacts/offsets                           N + 1, uint64: grasp i's contacts are
@@ -45,7 +45,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // 2: /grasps/validation, and /object/file and /hand/file relative to the dataset file's folder.
-constexpr int kSchemaVersion = 2;
+// 3: a validated grasp's direction may be -1: not tried, as a validation that stops at the first
+//    direction let go leaves those after it.
+constexpr int kSchemaVersion = 3;
 constexpr int kOldestSchemaVersion = 1;
 constexpr hsize_t kDirections = 6;
 
@@ -241,7 +243,7 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
           fmt::format("a grasp's validation has {} directions, not 6", g.validation.size()));
     for (std::size_t k = 0; k < kDirections; ++k) {
       const DatasetDirection d = g.validation.empty() ? DatasetDirection{} : g.validation[k];
-      direction_held.push_back(g.validation.empty() ? -1 : d.held ? 1 : 0);
+      direction_held.push_back(g.validation.empty() || !d.tried ? -1 : d.held ? 1 : 0);
       direction_failed.push_back(d.failed ? 1 : 0);
       slip.push_back(d.slip);
       turn.push_back(d.turn);
@@ -522,13 +524,16 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     if (schema >= 2 && direction_held[i * kDirections] != -1) {
       for (std::size_t k = 0; k < kDirections; ++k) {
         const std::size_t at = i * kDirections + k;
-        if (direction_held[at] != 0 && direction_held[at] != 1)
+        // The first direction is always tried; since schema 3 a later one may not be.
+        const bool untried = schema >= 3 && k > 0 && direction_held[at] == -1;
+        if (direction_held[at] != 0 && direction_held[at] != 1 && !untried)
           r.fail("/grasps/validation/held",
                  fmt::format("holds {} for grasp {}, direction {}: a validated grasp's "
-                             "directions are 0 or 1",
-                             direction_held[at], i, k));
+                             "directions are 0 or 1{}",
+                             direction_held[at], i, k, schema >= 3 ? ", or -1 (not tried)" : ""));
         DatasetDirection d;
         d.direction = Vector3(directions[3 * k], directions[3 * k + 1], directions[3 * k + 2]);
+        d.tried = !untried;
         d.held = direction_held[at] == 1;
         d.failed = direction_failed[at] != 0;
         d.slip = slip[at];
@@ -654,6 +659,7 @@ std::string pack(const GraspDataset& d) {
       p.put(d.turn);
       p.put(d.seconds);
       p.put(d.failed);
+      p.put(d.tried);
     }
     p.put(g.contactPoints);
     p.put(g.contactNormals);
@@ -699,6 +705,7 @@ GraspDataset unpack(std::string_view bytes) {
       u.get(d.turn);
       u.get(d.seconds);
       u.get(d.failed);
+      u.get(d.tried);
     }
     u.get(g.contactPoints);
     u.get(g.contactNormals);

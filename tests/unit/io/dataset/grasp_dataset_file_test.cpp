@@ -116,6 +116,7 @@ TEST(GraspDatasetFile, LoadsBackWhatWasSaved) {
       EXPECT_EQ(l.validation[k].turn, s.validation[k].turn) << k;
       EXPECT_EQ(l.validation[k].seconds, s.validation[k].seconds) << k;
       EXPECT_EQ(l.validation[k].failed, s.validation[k].failed) << k;
+      EXPECT_TRUE(l.validation[k].tried) << k;
     }
   }
   EXPECT_EQ(loaded.grasps[0].validation.size(), 6u);
@@ -138,6 +139,44 @@ void inFolder(const fs::path& folder, F body) {
     throw;
   }
   fs::current_path(before);
+}
+
+TEST(GraspDatasetFile, DirectionsAfterTheFirstLetGoLoadBackUntried) {
+  // A batch validation stops at the first direction the grasp lets go (here the second): the
+  // four after it were not tried, and must not load back as "let go".
+  GraspDataset saved = twoGrasps();
+  std::vector<DatasetDirection>& directions = saved.grasps[0].validation;
+  directions[1].held = false;
+  for (std::size_t k = 2; k < 6; ++k) directions[k] = {directions[k].direction};
+  for (std::size_t k = 2; k < 6; ++k) directions[k].tried = false;
+  const fs::path file = test::scratchDir() / "stopped.h5";
+  saveGraspDataset(saved, file);
+  const GraspDataset loaded = loadGraspDataset(file);
+  ASSERT_EQ(loaded.grasps[0].validation.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const DatasetDirection& d = loaded.grasps[0].validation[k];
+    EXPECT_EQ(d.tried, k < 2) << k;
+    EXPECT_EQ(d.held, k == 0) << k;
+    EXPECT_EQ(d.direction, directions[k].direction) << k;
+    EXPECT_EQ(d.slip, directions[k].slip) << k;
+  }
+  EXPECT_EQ(loaded.grasps[0].held, 0);
+  EXPECT_TRUE(loaded.grasps[1].validation.empty());
+  // A schema 2 file had no untried directions: -1 there is an error that names the element.
+  const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  const hid_t attr = H5Aopen(h, "schema_version", H5P_DEFAULT);
+  const int two = 2;
+  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT, &two), 0);
+  H5Aclose(attr);
+  H5Fclose(h);
+  try {
+    loadGraspDataset(file);
+    ADD_FAILURE() << "a schema 2 file with an untried direction loaded";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("/grasps/validation/held"), std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(GraspDatasetFile, NamesItsFilesFromAnyWorkingFolder) {

@@ -22,6 +22,7 @@ struct DatasetDirection {
   double turn = 0.0;     // rad: the largest rotation relative to the palm
   double seconds = 0.0;  // simulated: less than asked when the run ended at rest or let go
   bool failed = false;   // the simulation itself failed (its message is not kept)
+  bool tried = true;     // false: an earlier direction let go and the validation stopped there
 };
 
 struct DatasetGrasp {
@@ -36,7 +37,8 @@ struct DatasetGrasp {
   double volume = 0.0;
   bool forceClosure = false;
   int held = -1;  // dynamic validation: 1 held, 0 not, -1 not validated
-  // The validation's 6 directions (empty when not validated); held is 1 when all held.
+  // The validation's 6 directions (empty when not validated); held is 1 when all held. A
+  // validation that stops at the first direction let go leaves the rest not tried.
   std::vector<DatasetDirection> validation;
   // The closed hand's contacts on the object, object frame: points on its surface, and normals
   // pointing out of it.
