@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -61,9 +62,13 @@ TEST(ParallelFor, KeepGoingStopsTakingItems) {
 
 TEST(ParallelFor, AnErrorIsRethrownAndStopsTheOthers) {
   std::atomic<int> done{0};
+  // The items after the failing one take a while, so that a worker left to run alone (the
+  // failing one descheduled before it could raise the stop, as on a loaded 2-core machine under
+  // a sanitizer) cannot finish them all before the stop: without a stop this takes seconds.
   EXPECT_THROW(parallelFor({.begin = 0, .end = 100000, .threads = 2},
                            [&](int, std::int64_t i) {
                              if (i == 3) throw Error("item 3 failed");
+                             if (i > 3) std::this_thread::sleep_for(std::chrono::microseconds(50));
                              ++done;
                            }),
                Error);
