@@ -67,6 +67,16 @@ GraspDataset twoGrasps() {
   return d;
 }
 
+// Sets a saved file's schema_version attribute, as an older graspkit would have written it.
+void rewriteSchemaVersion(const fs::path& file, int version) {
+  const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(h, 0);
+  const hid_t attr = H5Aopen(h, "schema_version", H5P_DEFAULT);
+  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
+  H5Aclose(attr);
+  H5Fclose(h);
+}
+
 std::string bytesOf(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -163,13 +173,7 @@ TEST(GraspDatasetFile, DirectionsAfterTheFirstLetGoLoadBackUntried) {
   EXPECT_EQ(loaded.grasps[0].held, 0);
   EXPECT_TRUE(loaded.grasps[1].validation.empty());
   // A schema 2 file had no untried directions: -1 there is an error that names the element.
-  const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  ASSERT_GE(h, 0);
-  const hid_t attr = H5Aopen(h, "schema_version", H5P_DEFAULT);
-  const int two = 2;
-  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT, &two), 0);
-  H5Aclose(attr);
-  H5Fclose(h);
+  rewriteSchemaVersion(file, 2);
   try {
     loadGraspDataset(file);
     ADD_FAILURE() << "a schema 2 file with an untried direction loaded";
@@ -215,10 +219,6 @@ TEST(GraspDatasetFile, SchemaOneFilesStillRead) {
   const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(h, 0);
   EXPECT_GE(H5Ldelete(h, "/grasps/validation", H5P_DEFAULT), 0);
-  const hid_t attr = H5Aopen(h, "schema_version", H5P_DEFAULT);
-  const int one = 1;
-  EXPECT_GE(H5Awrite(attr, H5T_NATIVE_INT, &one), 0);
-  H5Aclose(attr);
   const hid_t text = H5Tcopy(H5T_C_S1);
   H5Tset_size(text, H5T_VARIABLE);
   H5Tset_cset(text, H5T_CSET_UTF8);
@@ -228,6 +228,7 @@ TEST(GraspDatasetFile, SchemaOneFilesStillRead) {
   H5Dclose(hand);
   H5Tclose(text);
   H5Fclose(h);
+  rewriteSchemaVersion(file, 1);
   const GraspDataset loaded = loadGraspDataset(file);
   ASSERT_EQ(loaded.grasps.size(), 2u);
   EXPECT_EQ(loaded.grasps[0].held, 0);
