@@ -45,7 +45,7 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
       lua_createtable(L, 0, 7);
       pushVector3(L, d.direction);
       lua_setfield(L, -2, "direction");
-      if (d.tried) {  // held nil: not tried (an earlier direction let go)
+      if (d.tried) {  // held nil: not tried (another direction let go first)
         lua_pushboolean(L, d.held);
         lua_setfield(L, -2, "held");
       }
@@ -84,7 +84,7 @@ void pushGrasp(lua_State* L, const DatasetGrasp& g) {
 // graspkit.load_dataset(file) -> {object = {file, name, mass}, hand = {file, name},
 //   engine_version, seed, grasps = {{pose, pregrasp, open_dofs, closed_dofs, epsilon, volume,
 //   force_closure, held, validation = {{direction, held, slip, turn, seconds, failed, tried},
-//   ...} (held nil where not tried),
+//   ...} (held nil where not tried: another direction let go first),
 //   breakaway = {{engaged, value}, ...}, contacts = {{point, normal}, ...}},
 //   ...}}
 int loadDataset(lua_State* L) {

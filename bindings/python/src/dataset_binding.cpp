@@ -62,8 +62,9 @@ void bindDatasetGrasp(py::module_& m) {
             return directions;
           },
           "The validation's 6 directions (+x, -x, +y, -y, +z, -z; object frame) as "
-          "graspkit.validate gives them; empty when not validated. A direction after the first "
-          "let go is not tried by default in batch (tried False, held None).")
+          "graspkit.validate gives them; empty when not validated. In batch, validation ends at "
+          "the "
+          "first direction let go by default: the others are not tried (tried False, held None).")
       .def_property_readonly("contact_points",
                              [](const DatasetGrasp& g) { return points(g.contactPoints); })
       .def_property_readonly("contact_normals",

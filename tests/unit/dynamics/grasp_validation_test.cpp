@@ -129,10 +129,11 @@ TEST(GraspValidation, StoppingAtRestAgreesWithTheFullRun) {
   }
 }
 
-// A validation that stops at the first direction let go (as datasets run it) gives the label of
-// one that tries all six, the same results for the directions it tried, and tries exactly those
-// up to the first let go. Across the pads at 1.1 times the tipping pull, +x lets go and the five
-// after it are not tried; at 0.5 times it, whatever the six give, the two runs must agree.
+// A validation that ends at the first let go (as datasets run it) gives the label of one that
+// tries all six, the same results for the directions it tried, and when the grasp fails, exactly
+// one direction tried and let go, one the full run lets go too. Across the pads at 1.1 times the
+// tipping pull, +x and -x let go, so a pull along the pads (which holds) is cut short; at 0.5
+// times it, whatever the six give, the two runs must agree.
 TEST(GraspValidation, StoppingAtTheFirstLetGoKeepsTheLabel) {
   const ClosedGripper gripper = closedGripper();
   ASSERT_GE(gripper.box, 0);
@@ -146,24 +147,30 @@ TEST(GraspValidation, StoppingAtTheFirstLetGoKeepsTheLabel) {
     request.allDirections = false;
     const ValidationResult stopped = validateGrasp(gripper.world, 0, gripper.box, request);
     EXPECT_EQ(stopped.held, all.held);
-    bool let_go = false;
+    int tried = 0, let_go = 0, held = 0;
     for (int k = 0; k < 6; ++k) {
       SCOPED_TRACE(k);
       EXPECT_TRUE(all.directions[k].tried);
-      EXPECT_EQ(stopped.directions[k].tried, !let_go);
-      if (let_go) {
+      if (!stopped.directions[k].tried) {
         EXPECT_FALSE(stopped.directions[k].held);
+        EXPECT_EQ(stopped.directions[k].seconds, 0.0);
         continue;
       }
+      ++tried;
+      (stopped.directions[k].held ? held : let_go)++;
       EXPECT_EQ(stopped.directions[k].held, all.directions[k].held);
       EXPECT_EQ(stopped.directions[k].slip, all.directions[k].slip);
+      EXPECT_EQ(stopped.directions[k].turn, all.directions[k].turn);
       EXPECT_EQ(stopped.directions[k].seconds, all.directions[k].seconds);
-      let_go = !all.directions[k].held;
     }
+    EXPECT_EQ(stopped.directionsHeld, held);
+    EXPECT_EQ(let_go, all.held ? 0 : 1);
+    if (all.held) EXPECT_EQ(tried, 6);
     if (acceleration > across) {
       EXPECT_FALSE(all.directions[kPlusX].held);
-      EXPECT_FALSE(stopped.directions[kMinusX].tried);
-      EXPECT_EQ(stopped.directionsHeld, 0);
+      EXPECT_FALSE(all.directions[kMinusX].held);
+      EXPECT_TRUE(all.directions[kPlusZ].held);
+      EXPECT_LT(tried, 6);  // a pull held along the pads was cut short
     }
   }
 }

@@ -23,9 +23,9 @@ struct DatasetRequest {
   std::optional<double> seconds;      // ... or wall time
   bool validate = false;              // label each grasp (grasp_validation.hpp)
   double validateSeconds = 2.0;
-  // False: a grasp's directions stop at the first it lets go (ValidationRequest::allDirections),
-  // the rest stored as not tried. The held label is the same; most planned grasps fail, and
-  // their untried directions were half of a batch's validation time.
+  // False: a grasp's validation ends at the first direction it lets go
+  // (ValidationRequest::allDirections), the others stored as not tried. The held label is the
+  // same; most planned grasps fail, and the pulls they hold were most of validation's time.
   bool validateAllDirections = false;
   std::uint64_t seed = 1;
 };

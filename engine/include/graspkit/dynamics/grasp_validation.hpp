@@ -36,10 +36,14 @@ struct ValidationRequest {
   bool stopAtRest = true;
   double restSpeed = 1e-3;
   double restSeconds = 0.1;
-  // False: the directions after the first one the grasp lets go are not tried (their results
-  // say tried = false). The label `held` (every direction held) is the same either way, at a
-  // fraction of the cost for the grasps that fail: datasets, where most planned grasps fail and
-  // a held direction's run is the dearest part, take this (dataset_planning.hpp).
+  // False: the validation ends at the first direction the grasp lets go, and the directions
+  // not run to their end are not tried (their results say tried = false). The six pulls then
+  // share the steps, a few at a time, the one whose object is moving out fastest first, so that
+  // a grasp that fails seldom pays for the pulls it holds. Each pull's run does not depend on
+  // the others, so a direction tried gives bit for bit what allDirections gives, and the label
+  // `held` (every direction held) is the same either way: a grasp not held has exactly one
+  // direction tried and let go. Datasets, where most planned grasps fail, take this
+  // (dataset_planning.hpp).
   bool allDirections = true;
 };
 
@@ -50,7 +54,7 @@ struct DirectionResult {
   double turn = 0.0;     // rad: the largest rotation relative to the palm
   double seconds = 0.0;  // simulated: less than asked when it ended at rest or let go
   std::string failure;   // a DynamicsError's message, when the simulation itself failed
-  bool tried = true;     // false: an earlier direction let go, and allDirections was false
+  bool tried = true;     // false: another direction let go first, and allDirections was false
 };
 
 struct ValidationResult {
