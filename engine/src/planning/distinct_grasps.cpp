@@ -4,8 +4,8 @@
 
 namespace graspkit {
 
-DistinctGrasps::DistinctGrasps(double threshold, BestList::Distance distance)
-    : threshold_(threshold), distance_(std::move(distance)) {}
+DistinctGrasps::DistinctGrasps(double threshold, BestList::Distance distance, MeasureVolume measure)
+    : threshold_(threshold), distance_(std::move(distance)), measure_(std::move(measure)) {}
 
 bool DistinctGrasps::offer(const PlannedGrasp& grasp) {
   std::size_t near = grasps_.size();
@@ -18,13 +18,32 @@ bool DistinctGrasps::offer(const PlannedGrasp& grasp) {
     grasps_.push_back(grasp);
     return true;
   }
+  if (measure_ && orderNeedsVolume(grasp, grasps_[near])) {
+    PlannedGrasp measured = grasp;
+    measure_(measured);
+    measure_(grasps_[near]);
+    if (!betterGrasp(measured, grasps_[near])) return false;
+    grasps_[near] = std::move(measured);
+    return true;
+  }
   if (!betterGrasp(grasp, grasps_[near])) return false;
   grasps_[near] = grasp;
   return true;
 }
 
 std::vector<PlannedGrasp> DistinctGrasps::best(std::size_t count) const {
-  std::vector<PlannedGrasp> sorted = grasps_;
+  // Force closure ranks first whatever the volumes: with enough of it kept, no grasp that is not
+  // force closure makes the list, and their deferred volumes are never read.
+  const auto closure = static_cast<std::size_t>(forceClosureCount());
+  std::vector<PlannedGrasp> sorted;
+  if (closure >= std::min(count, grasps_.size())) {
+    std::copy_if(grasps_.begin(), grasps_.end(), std::back_inserter(sorted),
+                 [](const PlannedGrasp& g) { return g.forceClosure; });
+  } else {
+    if (measure_)
+      for (PlannedGrasp& g : grasps_) measure_(g);
+    sorted = grasps_;
+  }
   std::stable_sort(sorted.begin(), sorted.end(), betterGrasp);
   if (sorted.size() > count) sorted.resize(count);
   return sorted;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <thread>
 
 #include <fmt/format.h>
@@ -42,13 +43,15 @@ PlannerProgress progressOf(const Planner& planner, double seconds,
 
 }  // namespace
 
-bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp,
-                 const std::function<bool()>& keepGoing) {
+bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp, const std::function<bool()>& keepGoing,
+                 bool deferVolume) {
   scene.setHand(grasp.pose, grasp.dofs);
   AutoGraspOptions close;
   close.keepGoing = keepGoing;
   if (autoGrasp(scene.world(), scene.robot(), close).end == MotionEnd::Stopped) return false;
-  Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object());
+  GraspRequest request;
+  if (deferVolume) request.wrenchSpace.method = HullMethod::SkipNonForceClosure;
+  Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object(), request);
   grasp.closed = scene.handConfiguration();
   grasp.epsilon = measured.epsilon;
   grasp.volume = measured.volume;
@@ -57,6 +60,15 @@ bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp,
   grasp.forceClosure = measured.forceClosure;
   grasp.evaluated = true;
   return true;
+}
+
+void measureVolume(const World& world, int robot, const BodyRef& object, PlannedGrasp& grasp) {
+  if (!std::isnan(grasp.volume)) return;
+  grasp.volume = analyzeGrasp(world, robot, object, grasp.contactList).volume;
+}
+
+bool orderNeedsVolume(const PlannedGrasp& a, const PlannedGrasp& b) {
+  return !a.forceClosure && !b.forceClosure && a.epsilon == b.epsilon;
 }
 
 bool betterGrasp(const PlannedGrasp& a, const PlannedGrasp& b) {

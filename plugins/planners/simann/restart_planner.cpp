@@ -49,10 +49,16 @@ class RestartPlanner final : public Planner {
     // a worker.
     pool_ = std::make_unique<ScenePool>(request, space_);
     const double radius = pool_->scene(0).objectRadius();
-    kept_ = DistinctGrasps(settings.threshold, [space = space_, radius](std::span<const double> a,
-                                                                        std::span<const double> b) {
-      return space->distance(a, b, radius);
-    });
+    // Closes defer the volumes of grasps clearly not force closure (most of them): the kept
+    // list measures those its ranking reads, on the request's world (which no worker changes).
+    kept_ = DistinctGrasps(
+        settings.threshold,
+        [space = space_, radius](std::span<const double> a, std::span<const double> b) {
+          return space->distance(a, b, radius);
+        },
+        [world = request.world, robot = request.robot, object = request.object](PlannedGrasp& g) {
+          measureVolume(*world, robot, object, g);
+        });
     worldStart_ = request.states.empty() ? startState(pool_->scene(0)) : request.states.front();
     if (static_cast<int>(worldStart_.values.size()) != space_->size())
       throw Error(fmt::format("simann: the start state has {} values; the {} space has {}",
@@ -216,6 +222,7 @@ std::optional<std::vector<PlannedGrasp>> RestartPlanner::restart(
     PlannedGrasp grasp = plannedGrasp(*space_, state);
     CentringSettings centring = settings_.centring;
     centring.keepGoing = keepGoing;
+    centring.deferVolume = true;
     closeCentred(*scene, grasp, centring);
     if (!grasp.evaluated) return std::nullopt;  // stopped inside its close
     grasps.push_back(std::move(grasp));

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <random>
 #include <set>
@@ -1104,6 +1105,42 @@ TEST(CentredClose, OffCentreParallelJawGripsWithBothJaws) {
   EXPECT_NEAR(reclosed.epsilon, centredGrasp.epsilon, 1e-6 * centredGrasp.epsilon);
 }
 
+// A close whose wrenches leave the origin clearly outside skips the hull when its volume is
+// deferred: not force closure, epsilon -1 as the hull says, volume unknown; measureVolume() then
+// gives the hull's volume bit for bit, from the grasp's contacts alone (in the request's world,
+// where the hand still stands open). The Barrett is closed on plannerMug from its world pose
+// moved sideways in steps: the far ones touch the mug with one or two fingers.
+TEST(CentredClose, ADeferredVolumeIsTheHullsVolume) {
+  GRASPKIT_REQUIRE_SHARED();
+  const auto world = std::make_shared<const World>(plannerMug());
+  const PlanningRequest request = mugRequest(world);
+  const auto space = makeSearchSpace(request);
+  auto scene = makePlanningScene(request, space);
+  int deferred_with_volume = 0;
+  for (const double dx : {0.0, 20.0, 40.0, 60.0, -20.0, -40.0, -60.0}) {
+    SCOPED_TRACE(dx);
+    PlannedGrasp measured;
+    measured.pose = world->robot(0).pose();
+    measured.pose.translation().x() += dx;
+    measured.dofs.assign(world->robot(0).dofValues().begin(), world->robot(0).dofValues().end());
+    PlannedGrasp deferred = measured;
+    finishGrasp(*scene, measured);
+    finishGrasp(*scene, deferred, {}, true);
+    EXPECT_EQ(deferred.forceClosure, measured.forceClosure);
+    EXPECT_EQ(deferred.epsilon, measured.epsilon);
+    EXPECT_EQ(deferred.contacts, measured.contacts);
+    if (!std::isnan(deferred.volume)) {  // the hull was built: everything as without deferring
+      EXPECT_EQ(deferred.volume, measured.volume);
+      continue;
+    }
+    EXPECT_FALSE(measured.forceClosure);
+    measureVolume(*request.world, request.robot, request.object, deferred);
+    EXPECT_EQ(deferred.volume, measured.volume);
+    deferred_with_volume += measured.volume > 0.0;
+  }
+  EXPECT_GE(deferred_with_volume, 1);
+}
+
 // A grasp already in force closure is left as it is: the rule only acts on a failed close.
 TEST(CentredClose, ForceClosureGraspIsNotMoved) {
   World world = loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml");
@@ -1153,6 +1190,58 @@ TEST(DistinctGrasps, ForceClosureCountAndBestEpsilonNeverFall) {
         ASSERT_GE(std::abs(all[a].values[0] - all[b].values[0]), 1.0);
   }
   EXPECT_GT(previousCount, 5);
+}
+
+// Grasps whose volumes are deferred, measured only where the ranking reads them, are kept and
+// ranked as the same grasps with every volume known: after each offer, the best 1, 3 and 8 and
+// the whole list are the same grasps in the same order. Force closure kept beyond the list asked
+// for spares the measurements.
+TEST(DistinctGrasps, DeferredVolumesRankAsKnownOnes) {
+  const auto distance = [](std::span<const double> a, std::span<const double> b) {
+    return std::abs(a[0] - b[0]);
+  };
+  std::vector<double> volumes;  // of the grasp numbered values[1]
+  int measured = 0;
+  DistinctGrasps known(1.0, distance);
+  DistinctGrasps deferred(1.0, distance, [&](PlannedGrasp& g) {
+    if (!std::isnan(g.volume)) return;
+    g.volume = volumes.at(static_cast<std::size_t>(g.values[1]));
+    ++measured;
+  });
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> where(0.0, 40.0), quality(-0.8, 0.2), volume(0.0, 1.0);
+  int offeredWithoutClosure = 0;
+  for (int i = 0; i < 1500; ++i) {
+    PlannedGrasp g;
+    g.values = {where(random), static_cast<double>(i)};
+    g.evaluated = true;
+    g.epsilon = quality(random);
+    g.forceClosure = g.epsilon > 0;
+    if (!g.forceClosure) g.epsilon = -1.0;
+    g.volume = volume(random);
+    g.energy = where(random);
+    volumes.push_back(g.volume);
+    known.offer(g);
+    if (!g.forceClosure) {
+      g.volume = std::numeric_limits<double>::quiet_NaN();
+      ++offeredWithoutClosure;
+    }
+    deferred.offer(g);
+    for (const std::size_t count : {std::size_t{1}, std::size_t{3}, std::size_t{8}}) {
+      const auto a = known.best(count), b = deferred.best(count);
+      ASSERT_EQ(a.size(), b.size());
+      for (std::size_t k = 0; k < a.size(); ++k) {
+        ASSERT_EQ(a[k].values, b[k].values) << "offer " << i << ", best " << count;
+        ASSERT_EQ(a[k].volume, b[k].volume);
+      }
+    }
+  }
+  const int measuredBeforeTheWholeList = measured;
+  const auto a = known.best(known.size()), b = deferred.best(deferred.size());
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].values, b[k].values);
+  EXPECT_GT(deferred.forceClosureCount(), 8);
+  EXPECT_LT(measuredBeforeTheWholeList, offeredWithoutClosure / 2);
 }
 
 }  // namespace

@@ -9,7 +9,14 @@
 //   - a grasp within `threshold` of exactly one kept grasp replaces it when it ranks better
 //     (betterGrasp: force closure, epsilon, volume, energy);
 //   - otherwise it is refused.
+//
+// Grasps may come with their volume deferred (finishGrasp()'s deferVolume). `measure` then
+// measures one (measureVolume() on the request's world), only where the ranking reads it: a
+// replacement weighed between two grasps that are not force closure, and best() when fewer force
+// closure grasps are kept than it is asked for. A grasp's volume is measured at most once, and
+// the grasps kept and their order are what measuring every volume at once would give.
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -20,12 +27,15 @@ namespace graspkit {
 
 class DistinctGrasps {
  public:
-  DistinctGrasps(double threshold, BestList::Distance distance);
+  using MeasureVolume = std::function<void(PlannedGrasp&)>;
+
+  DistinctGrasps(double threshold, BestList::Distance distance, MeasureVolume measure = {});
 
   // Offers a finished grasp (PlannedGrasp::evaluated); returns whether it was kept.
   bool offer(const PlannedGrasp& grasp);
 
-  // The best `count` grasps, best first.
+  // The best `count` grasps, best first (their deferred volumes measured, when there is a
+  // `measure`).
   std::vector<PlannedGrasp> best(std::size_t count) const;
   std::size_t size() const { return grasps_.size(); }
   int forceClosureCount() const;
@@ -33,7 +43,8 @@ class DistinctGrasps {
  private:
   double threshold_;
   BestList::Distance distance_;
-  std::vector<PlannedGrasp> grasps_;
+  MeasureVolume measure_;
+  mutable std::vector<PlannedGrasp> grasps_;  // mutable: best() measures deferred volumes
 };
 
 }  // namespace graspkit
