@@ -35,7 +35,7 @@ class DistinctGrasps {
   bool offer(const PlannedGrasp& grasp);
 
   // The best `count` grasps, best first (their deferred volumes measured, when there is a
-  // `measure`).
+  // `measure`). It may write those volumes into the kept grasps: one thread at a time, as offer().
   std::vector<PlannedGrasp> best(std::size_t count) const;
   std::size_t size() const { return grasps_.size(); }
   int forceClosureCount() const;
