@@ -84,11 +84,15 @@ void BM_StepBarrettHoldingGlass(benchmark::State& state) {
 }
 BENCHMARK(BM_StepBarrettHoldingGlass)->Unit(benchmark::kMillisecond);
 
-// plannerMug with the Barrett closed on a grasp that holds the mug's weight (below); nullopt when
-// the shared corpus is absent.
-std::optional<World> barrettMugGrasp() {
+// plannerMug with the Barrett closed on a grasp that holds the mug's weight (below); nullopt,
+// with the benchmark marked skipped, when the shared corpus is absent.
+std::optional<World> barrettMugGrasp(benchmark::State& state) {
+  setWarningHandler([](const Warning&) {});
   const fs::path file = sharedDir() / "graspit-data/worlds/plannerMug.xml";
-  if (!fs::exists(file)) return std::nullopt;
+  if (!fs::exists(file)) {
+    state.SkipWithError("SKIPPED: the shared GraspIt! corpus is absent");
+    return std::nullopt;
+  }
   World world = loadWorldFile(file);
   // A grasp that holds: the hand where a graspkit plan of plannerMug put it (seed 1, 5 s), closed
   // by GraspIt!'s static autograsp. (GraspIt!'s own autograsp of the loaded pose is not force
@@ -104,12 +108,8 @@ std::optional<World> barrettMugGrasp() {
 }
 
 void BM_ValidateBarrettMug(benchmark::State& state) {
-  setWarningHandler([](const Warning&) {});
-  const std::optional<World> world = barrettMugGrasp();
-  if (!world) {
-    state.SkipWithError("SKIPPED: the shared GraspIt! corpus is absent");
-    return;
-  }
+  const std::optional<World> world = barrettMugGrasp(state);
+  if (!world) return;
   int held = 0;
   for (auto _ : state) held = validateGrasp(*world, 0, 0).directionsHeld;
   state.counters["directions_held"] = held;
@@ -122,12 +122,8 @@ BENCHMARK(BM_ValidateBarrettMug)->Unit(benchmark::kSecond)->Iterations(1);
 // at 3 g and 6 g: validation trying all six (range(1) = 1), then ending at the first let go (0), as
 // `graspkit batch` does. Their ratio is what stopping saves on a grasp that fails.
 void BM_ValidateHeavyMug(benchmark::State& state) {
-  setWarningHandler([](const Warning&) {});
-  const std::optional<World> world = barrettMugGrasp();
-  if (!world) {
-    state.SkipWithError("SKIPPED: the shared GraspIt! corpus is absent");
-    return;
-  }
+  const std::optional<World> world = barrettMugGrasp(state);
+  if (!world) return;
   ValidationRequest request;
   request.gravity = static_cast<double>(state.range(0)) * kStandardGravity;
   request.allDirections = state.range(1) != 0;
