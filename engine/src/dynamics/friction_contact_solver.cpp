@@ -1,6 +1,7 @@
 #include "dynamics/friction_contact_solver.hpp"
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/base/log.hpp"
 
 #include <FrictionContactProblem.h>
 #include <Friction_cst.h>
@@ -13,9 +14,29 @@
 #include <dlfcn.h>
 
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <mutex>
+
+// Siconos 4.4 prints its warnings on standard output whatever its verbosity, where they would
+// break a command's --json or CSV output (the library never writes there, see base/log.cpp).
+// NSGS warns when its sweeps stop changing the answer short of the tolerance ("tolerance has to
+// be positive!!"): it then stops, and the step goes on to Newton's method. A fingertip squeezing
+// an object does this a few times per grasp validated. numerics_warning is exported by
+// libsiconos_numerics, which calls it through its PLT, but is in none of its installed headers:
+// this definition takes its place for the whole process (libgraspkit comes before
+// libsiconos_numerics in the order the dynamic linker looks symbols up) and turns the warnings
+// into trace lines (graspkit -v).
+extern "C" void numerics_warning(const char* function, const char* format, ...) {
+  char message[512];
+  va_list arguments;
+  va_start(arguments, format);
+  std::vsnprintf(message, sizeof message, format, arguments);
+  va_end(arguments);
+  graspkit::trace(std::string("Siconos ") + (function ? function : "") + ": " + message);
+}
 
 namespace graspkit::dynamics {
 

@@ -46,6 +46,9 @@ World validationWorld(const World& world, int robot, int object) {
     base.setDofTargets(r, {});
   }
   setClosingTargets(base, robot);
+  // Grasps saved by earlier builds mark the joints their DOFs stopped with as broken away, which
+  // would hold those fingers limp: each DOF drives them, as the autograsp now leaves them.
+  base.releaseBreakawayNotLagging(robot);
   base.setTime(0.0);
   return base;
 }

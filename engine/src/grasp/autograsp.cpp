@@ -350,6 +350,9 @@ AutoGraspResult moveDofsToContacts(World& world, int robot, const DofMotion& mot
       break;
     }
   }
+  // Every joint stopped is marked broken away as it stops; the ones their DOF stopped with are
+  // not (they would hold the finger limp in a simulation, which drives it through them).
+  world.releaseBreakawayNotLagging(robot);
   const Robot& hand = world.robot(robot);
   result.dofValues.assign(hand.dofValues().begin(), hand.dofValues().end());
   result.contacts = robotContacts(world, robot);

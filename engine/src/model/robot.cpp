@@ -159,6 +159,21 @@ void Robot::setBreakaway(int joint, BreakawayState state) {
   updateLinkPoses();
 }
 
+void Robot::releaseBreakawayNotLagging() {
+  bool released = false;
+  for (int j = 0; j < static_cast<int>(breakaway_.size()); ++j) {
+    BreakawayState& state = breakaway_[j];
+    if (state.engaged &&
+        std::abs(dof_values_[model_->joint(j).dof] - state.value) <= kBreakawayLag) {
+      state = {};
+      released = true;
+    }
+  }
+  if (!released) return;
+  updateJoints();
+  updateLinkPoses();
+}
+
 const Transform& Robot::linkPose(const LinkRef& ref) const {
   return ref.isBase() ? pose_ : link_poses_[ref.chain][ref.link];
 }

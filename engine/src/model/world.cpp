@@ -110,6 +110,11 @@ void World::setBreakaway(int robot, int joint, BreakawayState state) {
   updateChildren(robot);
 }
 
+void World::releaseBreakawayNotLagging(int robot) {
+  mutableRobot(robot).releaseBreakawayNotLagging();
+  updateChildren(robot);
+}
+
 void World::setDofValues(int robot, std::span<const double> values, LimitPolicy policy) {
   mutableRobot(robot).setDofValues(values, policy);
   updateChildren(robot);

@@ -14,8 +14,11 @@
 
 #include "graspkit/dynamics/grasp_validation.hpp"
 
+#include "graspkit/dynamics/dynamics.hpp"
+
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -182,6 +185,9 @@ TEST(GraspValidation, StoppingAtTheFirstLetGoKeepsTheLabel) {
 // and, within the bound it adds, the slip of the full run. Its -z pull is the hard case: the box
 // stood still for 0.3 s with its force wandering, then slid out 0.7 s into the pull, which a watch
 // of 0.1 s called held.
+// Every finger joint is held by its clutch here (each DOF 1e-4 rad past where its joints
+// stopped): the box is wedged between still links. With its distal joints driven instead, as the
+// autograsp now leaves a close, the squeeze pushes this box out of the hand.
 TEST(GraspValidation, ASqueezeWhoseForceWandersStillEndsAtRest) {
   GRASPKIT_REQUIRE_SHARED();
   const std::filesystem::path folder = test::scratchDir() / "squeezed_box";
@@ -200,8 +206,8 @@ TEST(GraspValidation, ASqueezeWhoseForceWandersStillEndsAtRest) {
   <robot>
     <filename>)" << (*test::graspitDataDir() / "models/robots/Barrett/Barrett.xml").string()
                       << R"(</filename>
-    <dofValues>+0 +1.7075000000000011 1 +0.14625 1 +1.7075000000000011 +0.9437500000000006 1
-      +0.18875000000000003 1 +0.9437500000000006 +1.606250000000001 1 +1.606250000000001 1
+    <dofValues>+0 +1.7076 1 +0.14625 1 +1.7075000000000011 +0.94385 1
+      +0.18875000000000003 1 +0.9437500000000006 +1.60635 1 +1.606250000000001 1
       +1.606250000000001</dofValues>
     <transform><fullTransform>(-0.04879938330505 +0.77605742551237 +0.620198984171
       -0.10347324547638)[-46.062102309025924 +27.161153830754472 +78.26042841887937]</fullTransform>
@@ -227,6 +233,39 @@ TEST(GraspValidation, ASqueezeWhoseForceWandersStillEndsAtRest) {
   }
   EXPECT_GE(early.directionsHeld, 5);
   EXPECT_EQ(ended_early, early.directionsHeld);
+}
+
+// A hand closed by the autograsp and then simulated pushes on what it touches: each finger's
+// DOF drives it through the joints it stopped with. Held by their clutches instead, the fingers
+// stood still where the close left them while their DOFs ran on to their limits, moving no link
+// (the bh8 on the mug, no gravity).
+TEST(GraspValidation, AClosedHandSqueezesWhenSimulated) {
+  World world = loadWorldFile(test::modelsDir() / "worlds" / "default.xml");
+  autoGrasp(world, 0);
+  world.setGravity(Vector3::Zero());
+  setClosingTargets(world, 0);
+  simulate(world, {.seconds = 0.1});
+  const auto isMug = [&](const BodyRef& ref) {
+    return ref.kind == BodyRef::Kind::Body && world.bodies()[ref.index].kind == BodyKind::Graspable;
+  };
+  std::set<BodyRef> pushing;  // hand links pushing on the mug at the last step
+  for (const ContactImpulse& contact : world.lastImpulses()) {
+    if (contact.impulse.norm() <= 0.0) continue;
+    if (contact.body1.isLink() && isMug(contact.body2)) pushing.insert(contact.body1);
+    if (contact.body2.isLink() && isMug(contact.body1)) pushing.insert(contact.body2);
+  }
+  EXPECT_GE(pushing.size(), 2u);
+  // Every closing DOF either drives a joint or has stopped.
+  const Robot& hand = world.robot(0);
+  const RobotModel& model = hand.model();
+  for (int d = 0; d < hand.dofCount(); ++d) {
+    if (model.dofs[d].defaultVelocity <= 0.0 || std::abs(hand.dofVelocities()[d]) < 1e-3) continue;
+    SCOPED_TRACE(d);
+    bool drives = false;
+    for (int j = 0; j < model.jointCount(); ++j)
+      drives = drives || (model.joint(j).dof == d && !hand.breakaway()[j].engaged);
+    EXPECT_TRUE(drives);
+  }
 }
 
 // A grasp whose contacts sit closer than the resting separation with the object wedged (the

@@ -162,6 +162,37 @@ TEST(AutoGrasp, BarrettOnTheMugNeverInterpenetrates) {
   expectNoLinkCollides(world, 0, mug);
 }
 
+// GraspIt!'s breakaway: a joint is in breakaway once its DOF has gone on more than 1e-5 past
+// where the joint stopped. A contact on a distal link stops the joints behind it too, so a
+// finger's DOF stops with its distal joint: that joint still follows its DOF, and a simulation
+// drives the finger through it. (On this world every finger stops at one contact instant, so no
+// joint is left behind; SimAnn.SavedGraspWorldsReloadToTheSameGrasp has fingers that are.)
+TEST(AutoGrasp, OnlyJointsTheirDofWentOnPastAreInBreakaway) {
+  World world = loadWorldFile(test::modelsDir() / "worlds" / "default.xml");
+  autoGrasp(world, 0);
+  const Robot& hand = world.robot(0);
+  const RobotModel& model = hand.model();
+  int stopped_fingers = 0;
+  for (const KinematicChain& chain : model.chains) {
+    for (std::size_t local = 0; local < chain.joints.size(); ++local) {
+      const Joint& joint = chain.joints[local];
+      const Dof& dof = model.dofs[joint.dof];
+      if (dof.type != DofType::Breakaway) continue;
+      const int j = chain.firstJoint + static_cast<int>(local);
+      const BreakawayState& state = hand.breakaway()[j];
+      const double value = hand.dofValues()[joint.dof];
+      SCOPED_TRACE(j);
+      if (state.engaged) EXPECT_GT(value - state.value, kBreakawayLag);
+      const bool distal = local + 1 == chain.joints.size();
+      if (distal && value < dof.max - 1e-6) {  // the DOF stopped at a contact, not its limit
+        EXPECT_FALSE(state.engaged);
+        ++stopped_fingers;
+      }
+    }
+  }
+  EXPECT_GT(stopped_fingers, 0);
+}
+
 TEST(AutoGrasp, MoveDofsToContactsStopsShortOfItsTargetOrAtTheBox) {
   // The jaw's prismatic DOF toward a target before the box (d0 = 4 leaves a 6 mm gap): it
   // stops there, in 0.5 mm steps (ceil(4 / 0.5) = 8); toward 20 (past the box) it stops at

@@ -103,6 +103,10 @@ struct BreakawayState {
   double value = 0.0;
 };
 
+// How far a DOF must have gone on past the value a joint stopped at for the joint to be in
+// breakaway (GraspIt!'s test): nearer, the joint still follows its DOF.
+constexpr double kBreakawayLag = 1e-5;
+
 class Robot {
  public:
   explicit Robot(std::shared_ptr<const RobotModel> model);
@@ -139,6 +143,10 @@ class Robot {
 
   std::span<const BreakawayState> breakaway() const { return breakaway_; }
   void setBreakaway(int joint, BreakawayState state);
+  // Re-engages each joint marked broken away whose DOF has not gone on past it by more than
+  // kBreakawayLag: the joint a DOF stopped with (a Barrett's distal) is still driven by it.
+  // A joint moves by at most kBreakawayLag times its ratio.
+  void releaseBreakawayNotLagging();
 
   // World poses: the base, and link l of chain c.
   const Transform& linkPose(int chain, int link) const { return link_poses_[chain][link]; }

@@ -87,6 +87,8 @@ class World {
                     LimitPolicy policy = LimitPolicy::Clamp);
   // Breaks joint `joint` of `robot` away (or re-engages it); mounted robots follow.
   void setBreakaway(int robot, int joint, BreakawayState state);
+  // Robot::releaseBreakawayNotLagging on `robot`; mounted robots follow.
+  void releaseBreakawayNotLagging(int robot);
   // The world pose of a connection's mount piece (the child's base).
   Transform mountPose(const Connection& connection) const;
 
