@@ -268,6 +268,35 @@ TEST(GraspValidation, AClosedHandSqueezesWhenSimulated) {
   }
 }
 
+// Grasps saved by earlier builds mark every joint the close stopped as broken away, the joints
+// their DOFs stopped with too. Validation drives those joints all the same: such a grasp gets
+// exactly the labels of the grasp as the autograsp now leaves it.
+TEST(GraspValidation, JointsMarkedBrokenAwayAtTheirDofsValueAreDriven) {
+  World closed = loadWorldFile(test::modelsDir() / "worlds" / "default.xml");
+  autoGrasp(closed, 0);
+  World marked = closed.clone();
+  const Robot& hand = marked.robot(0);
+  int marked_joints = 0;
+  for (int j = 0; j < hand.model().jointCount(); ++j) {
+    const int d = hand.model().joint(j).dof;
+    if (hand.model().dofs[d].type != DofType::Breakaway || hand.breakaway()[j].engaged) continue;
+    marked.setBreakaway(0, j, {true, hand.dofValues()[d]});
+    ++marked_joints;
+  }
+  ASSERT_GT(marked_joints, 0);
+  ValidationRequest request;
+  request.seconds = 0.3;
+  const ValidationResult expected = validateGrasp(closed, 0, 1, request);
+  const ValidationResult got = validateGrasp(marked, 0, 1, request);
+  EXPECT_EQ(got.held, expected.held);
+  for (int k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(got.directions[k].held, expected.directions[k].held);
+    EXPECT_EQ(got.directions[k].slip, expected.directions[k].slip);
+    EXPECT_EQ(got.directions[k].seconds, expected.directions[k].seconds);
+  }
+}
+
 // A grasp whose contacts sit closer than the resting separation with the object wedged (the
 // push-outs cannot all be met, so the contacts are only kept from closing) must stay put under
 // the pull: contacts kept from closing may not creep closed through the solver's tolerance.
