@@ -34,9 +34,8 @@ bool DistinctGrasps::offer(const PlannedGrasp& grasp) {
 std::vector<PlannedGrasp> DistinctGrasps::best(std::size_t count) const {
   // Force closure ranks first whatever the volumes: with enough of it kept, no grasp that is not
   // force closure makes the list, and their deferred volumes are never read.
-  const auto closure = static_cast<std::size_t>(forceClosureCount());
   std::vector<PlannedGrasp> sorted;
-  if (closure >= std::min(count, grasps_.size())) {
+  if (!bestReadsVolumes(count)) {
     std::copy_if(grasps_.begin(), grasps_.end(), std::back_inserter(sorted),
                  [](const PlannedGrasp& g) { return g.forceClosure; });
   } else {
@@ -47,6 +46,16 @@ std::vector<PlannedGrasp> DistinctGrasps::best(std::size_t count) const {
   std::stable_sort(sorted.begin(), sorted.end(), betterGrasp);
   if (sorted.size() > count) sorted.resize(count);
   return sorted;
+}
+
+void DistinctGrasps::measureForBest(std::size_t count) {
+  if (!measure_ || !bestReadsVolumes(count)) return;
+  for (PlannedGrasp& g : grasps_) measure_(g);
+}
+
+bool DistinctGrasps::bestReadsVolumes(std::size_t count) const {
+  const auto closure = static_cast<std::size_t>(forceClosureCount());
+  return closure < std::min(count, grasps_.size());
 }
 
 int DistinctGrasps::forceClosureCount() const {

@@ -256,6 +256,8 @@ void RestartPlanner::run(const PlanningBudget& budget) {
       pending.erase(pending.begin());
       ++merged_;
     }
+    // On a time budget, the volumes the final best list reads are measured inside it.
+    if (budget.seconds) kept_.measureForBest(static_cast<std::size_t>(request_.bestListSize));
   };
   auto progress = [&](double elapsed) {
     PlannerProgress p;

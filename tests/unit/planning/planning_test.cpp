@@ -1244,5 +1244,61 @@ TEST(DistinctGrasps, DeferredVolumesRankAsKnownOnes) {
   EXPECT_LT(measuredBeforeTheWholeList, offeredWithoutClosure / 2);
 }
 
+// measureForBest(count) measures exactly what best(count) would: afterwards best(count) measures
+// nothing and gives what it would have given. With `count` force-closure grasps kept it measures
+// nothing at all.
+TEST(DistinctGrasps, MeasuringForTheBestListLeavesBestNothingToMeasure) {
+  const auto distance = [](std::span<const double> a, std::span<const double> b) {
+    return std::abs(a[0] - b[0]);
+  };
+  int measured = 0;
+  const auto measure = [&](PlannedGrasp& g) {
+    if (!std::isnan(g.volume)) return;
+    g.volume = g.values[1];  // a volume known to the test, revealed only by measuring
+    ++measured;
+  };
+  DistinctGrasps early(1.0, distance, measure), late(1.0, distance, measure);
+  auto grasp = [](double where, double volume, bool closure) {
+    PlannedGrasp g;
+    g.values = {where, volume};
+    g.evaluated = true;
+    g.forceClosure = closure;
+    g.epsilon = closure ? 0.1 * volume : -1.0;
+    g.volume = closure ? volume : std::numeric_limits<double>::quiet_NaN();
+    return g;
+  };
+  // Three force-closure grasps and five that are not, 2 apart (none replaces another).
+  for (int i = 0; i < 8; ++i) {
+    const PlannedGrasp g = grasp(2.0 * i, 1.0 + (i * 5) % 8, i % 3 == 0);
+    early.offer(g);
+    late.offer(g);
+  }
+  ASSERT_EQ(early.forceClosureCount(), 3);
+  measured = 0;
+  early.measureForBest(3);  // three force-closure grasps fill it: nothing to measure
+  EXPECT_EQ(measured, 0);
+  early.measureForBest(6);
+  EXPECT_EQ(measured, 5);  // the five grasps that are not force closure
+  measured = 0;
+  const auto a = early.best(6);
+  EXPECT_EQ(measured, 0);
+  const auto b = late.best(6);
+  EXPECT_EQ(measured, 5);
+  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].values, b[k].values) << k;
+    EXPECT_EQ(a[k].volume, a[k].values[1]) << k;
+  }
+  // By hand: force closure by epsilon (0.8, 0.7, 0.1 at i = 3, 6, 0), then the rest by volume
+  // (6, 5, 4 at i = 1, 4, 7).
+  EXPECT_EQ(a[0].values[0], 6.0);
+  EXPECT_EQ(a[1].values[0], 12.0);
+  EXPECT_EQ(a[2].values[0], 0.0);
+  EXPECT_EQ(a[3].values[0], 2.0);
+  EXPECT_EQ(a[4].values[0], 8.0);
+  EXPECT_EQ(a[5].values[0], 14.0);
+}
+
 }  // namespace
 }  // namespace graspkit
