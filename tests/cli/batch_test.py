@@ -12,7 +12,8 @@ Checks, each against an independent truth (a single uninterrupted run, the body 
   - running again changes nothing (every file keeps its bytes);
   - two shards into one folder give the same files as the single run;
   - a run killed with SIGKILL mid-way, then run again, ends with the same files, each object
-    attempted once, and no temporaries left;
+    attempted once, and no temporaries left (a dead writer's manifest or timings copy is
+    removed, a running one's is not);
   - a broken object file is recorded as failed with its name and reason, the rest finish, it is
     retried once and then left alone;
   - an object that runs out of time is killed and recorded as failed;
@@ -153,9 +154,21 @@ pending_names = [f"object_{i:04d}_{KINDS[i % 5]}" for i in range(COUNT)
                  .get("status") != "done"]
 leftover = killed / "grasps" / f".{pending_names[-1]}.h5.1.tmp"
 leftover.write_bytes(b"half a dataset")
+# A manifest and a timings file whose writer was killed between naming its copy and renaming it
+# over the file (a process that has ended), and one whose writer still runs (this test).
+ended = subprocess.Popen(["true"])
+ended.wait()
+stale = [killed / f"manifest.json.tmp{ended.pid}", killed / f"timings.json.tmp{ended.pid}"]
+live = killed / f"timings.json.tmp{os.getpid()}"
+for f in stale + [live]:
+    f.write_text("{")
 batch(objects, killed)
 if datasets(killed) != files:
     fail("a killed and resumed run did not give the single run's files")
+if any(f.exists() for f in stale) or not live.exists():
+    fail(f"the resumed run did not clear its dead writers' temporaries alone: "
+         f"{sorted(p.name for p in killed.iterdir())}")
+live.unlink()
 if any(e["attempts"] != 1 for e in manifest(killed)["objects"].values()):
     fail(f"an object was attempted twice: {manifest(killed)['objects']}")
 

@@ -145,6 +145,25 @@ void removeStaleTemporaries(const fs::path& folder) {
   }
 }
 
+// writeFileAtomically()'s temporary "FILE.tmpPID" that a killed run of this shard left behind
+// (killed between naming its written copy and renaming it over FILE): each shard's manifest and
+// timings are written by that shard's run alone, so another's is never touched.
+void removeStaleTemporariesOf(const fs::path& file) {
+  const std::string prefix = file.filename().string() + ".tmp";
+  std::error_code missing;
+  for (const auto& entry : fs::directory_iterator(file.parent_path(), missing)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
+    std::error_code ignored;
+    if (entry.is_regular_file(ignored) && !processRuns(static_cast<pid_t>(std::stol(digits))))
+      fs::remove(entry.path(), ignored);
+  }
+}
+
 // What a run of the batch keeps: the objects, this share of them, and on the rank that writes it,
 // the manifest and the counts for the summary.
 class BatchRun {
@@ -166,6 +185,8 @@ class BatchRun {
     removeStaleTemporaries(options_.out / "grasps");
     manifest_file_ = options_.out / shardFileName("manifest", shard_.index + 1);
     timings_file_ = options_.out / shardFileName("timings", shard_.index + 1);
+    removeStaleTemporariesOf(manifest_file_);
+    removeStaleTemporariesOf(timings_file_);
     timings_ = {{"objects", json::object()}};
     if (fs::exists(timings_file_)) {  // informative only: a file that does not parse is replaced
       const json previous = json::parse(readInputFile(timings_file_), nullptr, false);
