@@ -48,7 +48,7 @@ std::optional<Vector3> centringMove(const PlanningScene& scene, const PlannedGra
 }  // namespace
 
 void closeCentred(PlanningScene& scene, PlannedGrasp& grasp, const CentringSettings& settings) {
-  if (!finishGrasp(scene, grasp, settings.keepGoing, settings.deferVolume)) return;
+  if (!finishGrasp(scene, grasp, settings.keepGoing, settings.measure)) return;
   for (int move = 0; move < settings.moves && !grasp.forceClosure; ++move) {
     if (settings.keepGoing && !settings.keepGoing()) return;
     const std::optional<Vector3> shift = centringMove(scene, grasp);
@@ -64,7 +64,7 @@ void closeCentred(PlanningScene& scene, PlannedGrasp& grasp, const CentringSetti
     moved.pose = scene.space().handPose(moved.values);
     scene.setHand(moved.pose, moved.dofs);
     if (scene.handCollides()) return;
-    if (!finishGrasp(scene, moved, settings.keepGoing, settings.deferVolume)) return;
+    if (!finishGrasp(scene, moved, settings.keepGoing, settings.measure)) return;
     if (orderNeedsVolume(moved, grasp)) {
       measureVolume(scene.world(), scene.robot(), scene.object(), moved);
       measureVolume(scene.world(), scene.robot(), scene.object(), grasp);

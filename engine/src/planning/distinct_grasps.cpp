@@ -32,30 +32,42 @@ bool DistinctGrasps::offer(const PlannedGrasp& grasp) {
 }
 
 std::vector<PlannedGrasp> DistinctGrasps::best(std::size_t count) const {
-  // Force closure ranks first whatever the volumes: with enough of it kept, no grasp that is not
-  // force closure makes the list, and their deferred volumes are never read.
+  measureTies(count);
   std::vector<PlannedGrasp> sorted;
-  if (!bestReadsVolumes(count)) {
-    std::copy_if(grasps_.begin(), grasps_.end(), std::back_inserter(sorted),
-                 [](const PlannedGrasp& g) { return g.forceClosure; });
-  } else {
-    if (measure_)
-      for (PlannedGrasp& g : grasps_) measure_(g);
-    sorted = grasps_;
-  }
+  for (const PlannedGrasp* g : candidates(count)) sorted.push_back(*g);
   std::stable_sort(sorted.begin(), sorted.end(), betterGrasp);
   if (sorted.size() > count) sorted.resize(count);
   return sorted;
 }
 
-void DistinctGrasps::measureForBest(std::size_t count) {
-  if (!measure_ || !bestReadsVolumes(count)) return;
-  for (PlannedGrasp& g : grasps_) measure_(g);
+std::vector<PlannedGrasp*> DistinctGrasps::candidates(std::size_t count) const {
+  // Force closure ranks first whatever the volumes: with enough of it kept, no grasp that is not
+  // force closure makes the list, and their volumes are never read.
+  const bool closureFills =
+      static_cast<std::size_t>(forceClosureCount()) >= std::min(count, grasps_.size());
+  std::vector<PlannedGrasp*> out;
+  for (PlannedGrasp& g : grasps_)
+    if (g.forceClosure || !closureFills) out.push_back(&g);
+  return out;
 }
 
-bool DistinctGrasps::bestReadsVolumes(std::size_t count) const {
-  const auto closure = static_cast<std::size_t>(forceClosureCount());
-  return closure < std::min(count, grasps_.size());
+void DistinctGrasps::measureTies(std::size_t count) const {
+  if (!measure_) return;
+  auto ranked = candidates(count);
+  const auto before = [](const PlannedGrasp* a, const PlannedGrasp* b) {
+    if (a->forceClosure != b->forceClosure) return a->forceClosure;
+    return a->epsilon > b->epsilon;
+  };
+  std::sort(ranked.begin(), ranked.end(), before);
+  // A run of grasps that force closure and epsilon cannot order (all the grasps that are not
+  // force closure, usually) is ordered by volume, where it reaches into the best `count`.
+  for (std::size_t first = 0; first < ranked.size() && first < count;) {
+    std::size_t end = first + 1;
+    while (end < ranked.size() && orderNeedsVolume(*ranked[first], *ranked[end])) ++end;
+    if (end - first > 1)
+      for (std::size_t k = first; k < end; ++k) measure_(*ranked[k]);
+    first = end;
+  }
 }
 
 int DistinctGrasps::forceClosureCount() const {

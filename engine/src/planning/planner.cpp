@@ -44,13 +44,13 @@ PlannerProgress progressOf(const Planner& planner, double seconds,
 }  // namespace
 
 bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp, const std::function<bool()>& keepGoing,
-                 bool deferVolume) {
+                 CloseMeasure measure) {
   scene.setHand(grasp.pose, grasp.dofs);
   AutoGraspOptions close;
   close.keepGoing = keepGoing;
   if (autoGrasp(scene.world(), scene.robot(), close).end == MotionEnd::Stopped) return false;
   GraspRequest request;
-  if (deferVolume) request.wrenchSpace.method = HullMethod::SkipNonForceClosure;
+  if (measure == CloseMeasure::Ranking) request.wrenchSpace.method = HullMethod::NearestFacet;
   Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object(), request);
   grasp.closed = scene.handConfiguration();
   grasp.epsilon = measured.epsilon;
@@ -67,8 +67,15 @@ void measureVolume(const World& world, int robot, const BodyRef& object, Planned
   grasp.volume = analyzeGrasp(world, robot, object, grasp.contactList).volume;
 }
 
+void measureAsGraspIt(const World& world, int robot, const BodyRef& object, PlannedGrasp& grasp) {
+  const Grasp measured = analyzeGrasp(world, robot, object, grasp.contactList);
+  grasp.epsilon = measured.epsilon;
+  grasp.forceClosure = measured.forceClosure;
+  grasp.volume = measured.volume;
+}
+
 bool orderNeedsVolume(const PlannedGrasp& a, const PlannedGrasp& b) {
-  return !a.forceClosure && !b.forceClosure && a.epsilon == b.epsilon;
+  return a.forceClosure == b.forceClosure && a.epsilon == b.epsilon;
 }
 
 bool betterGrasp(const PlannedGrasp& a, const PlannedGrasp& b) {

@@ -49,8 +49,9 @@ class RestartPlanner final : public Planner {
     // a worker.
     pool_ = std::make_unique<ScenePool>(request, space_);
     const double radius = pool_->scene(0).objectRadius();
-    // Closes defer the volumes of grasps clearly not force closure (most of them): the kept
-    // list measures those its ranking reads, on the request's world (which no worker changes).
+    // Closes are measured for ranking (CloseMeasure::Ranking: no hull, no volume): the kept list
+    // measures the volumes its ranking reads, and best() GraspIt!'s figures of the grasps it
+    // returns, on the request's world (which no worker changes).
     kept_ = DistinctGrasps(
         settings.threshold,
         [space = space_, radius](std::span<const double> a, std::span<const double> b) {
@@ -76,9 +77,7 @@ class RestartPlanner final : public Planner {
 
   std::int64_t stepsDone() const override { return merged_ * settings_.cost(); }
 
-  std::vector<PlannedGrasp> best() const override {
-    return kept_.best(static_cast<std::size_t>(request_.bestListSize));
-  }
+  std::vector<PlannedGrasp> best() const override;
 
  private:
   PlanningRequest refineRequest() const {
@@ -98,6 +97,9 @@ class RestartPlanner final : public Planner {
                                                    std::int64_t index,
                                                    const std::function<bool()>& keepGoing) const;
 
+  // The grasp with GraspIt!'s figures (measureAsGraspIt), each kept grasp measured once.
+  PlannedGrasp reported(const PlannedGrasp& grasp) const;
+
   PlanningRequest request_;
   RestartSettings settings_;
   std::shared_ptr<const SearchSpace> space_;
@@ -105,7 +107,50 @@ class RestartPlanner final : public Planner {
   SearchState worldStart_;
   DistinctGrasps kept_;
   std::int64_t merged_ = 0;  // restarts 0 .. merged_ - 1 are in kept_
+  // GraspIt!'s epsilon, force closure and volume of the grasps best() returned, by their values.
+  struct Figures {
+    double epsilon;
+    bool forceClosure;
+    double volume;
+  };
+  mutable std::map<std::vector<double>, Figures> reported_;
 };
+
+// The best grasps by the closes' ranking figures, measured, ordered and returned with GraspIt!'s.
+// A grasp in force closure by the exact hull may not be by GraspIt!'s merged one (a
+// near-degenerate grasp, epsilon near 0): it then ranks after every force-closure grasp, and the
+// next force-closure grasps by ranking are measured to take its place.
+std::vector<PlannedGrasp> RestartPlanner::best() const {
+  const auto count = static_cast<std::size_t>(request_.bestListSize);
+  const auto rankedClosures = static_cast<std::size_t>(kept_.forceClosureCount());
+  std::vector<PlannedGrasp> grasps;
+  for (std::size_t n = count;;) {
+    grasps = kept_.best(n);
+    std::size_t closures = 0;
+    for (PlannedGrasp& g : grasps) {
+      g = reported(g);
+      closures += g.forceClosure;
+    }
+    if (closures >= count || n >= rankedClosures) break;
+    n += count - closures;
+  }
+  std::stable_sort(grasps.begin(), grasps.end(), betterGrasp);
+  if (grasps.size() > count) grasps.resize(count);
+  return grasps;
+}
+
+PlannedGrasp RestartPlanner::reported(const PlannedGrasp& grasp) const {
+  PlannedGrasp out = grasp;
+  auto it = reported_.find(grasp.values);
+  if (it == reported_.end()) {
+    measureAsGraspIt(*request_.world, request_.robot, request_.object, out);
+    it = reported_.emplace(grasp.values, Figures{out.epsilon, out.forceClosure, out.volume}).first;
+  }
+  out.epsilon = it->second.epsilon;
+  out.forceClosure = it->second.forceClosure;
+  out.volume = it->second.volume;
+  return out;
+}
 
 double uniform(std::mt19937_64& random) {
   return static_cast<double>(random() >> 11) * 0x1.0p-53;
@@ -222,7 +267,7 @@ std::optional<std::vector<PlannedGrasp>> RestartPlanner::restart(
     PlannedGrasp grasp = plannedGrasp(*space_, state);
     CentringSettings centring = settings_.centring;
     centring.keepGoing = keepGoing;
-    centring.deferVolume = true;
+    centring.measure = CloseMeasure::Ranking;
     closeCentred(*scene, grasp, centring);
     if (!grasp.evaluated) return std::nullopt;  // stopped inside its close
     grasps.push_back(std::move(grasp));
@@ -256,8 +301,8 @@ void RestartPlanner::run(const PlanningBudget& budget) {
       pending.erase(pending.begin());
       ++merged_;
     }
-    // On a time budget, the volumes the final best list reads are measured inside it.
-    if (budget.seconds) kept_.measureForBest(static_cast<std::size_t>(request_.bestListSize));
+    // On a time budget, what the final best list measures is measured inside it.
+    if (budget.seconds) best();
   };
   auto progress = [&](double elapsed) {
     PlannerProgress p;

@@ -24,9 +24,9 @@ struct CentringSettings {
   // Asked before each move and each step of a close; false stops there (a time budget running
   // out), leaving the grasp unevaluated when its first close was stopped.
   std::function<bool()> keepGoing;
-  // finishGrasp()'s deferVolume: the volumes of grasps clearly not force closure are left NaN,
-  // except where a move is weighed against the grasp it would replace.
-  bool deferVolume = false;
+  // How each close is measured (finishGrasp()). With CloseMeasure::Ranking, volumes stay
+  // unknown except where a move is weighed against the grasp it would replace.
+  CloseMeasure measure = CloseMeasure::GraspIt;
 };
 
 // finishGrasp(), then up to `settings.moves` centring moves while the grasp is not force

@@ -10,11 +10,13 @@
 //     (betterGrasp: force closure, epsilon, volume, energy);
 //   - otherwise it is refused.
 //
-// Grasps may come with their volume deferred (finishGrasp()'s deferVolume). `measure` then
+// Grasps may come with their volume unknown (NaN: CloseMeasure::Ranking). `measure` then
 // measures one (measureVolume() on the request's world), only where the ranking reads it: a
-// replacement weighed between two grasps that are not force closure, and best() when fewer force
-// closure grasps are kept than it is asked for. A grasp's volume is measured at most once, and
-// the grasps kept and their order are what measuring every volume at once would give.
+// replacement weighed between two grasps that force closure and epsilon cannot order, and in
+// best(count) the runs of such grasps that reach into the best `count` (all the grasps that are
+// not force closure, when fewer than `count` force-closure grasps are kept). A grasp's volume is
+// measured at most once, and the grasps kept and their order are what measuring every volume at
+// once would give.
 
 #include <functional>
 #include <span>
@@ -34,24 +36,24 @@ class DistinctGrasps {
   // Offers a finished grasp (PlannedGrasp::evaluated); returns whether it was kept.
   bool offer(const PlannedGrasp& grasp);
 
-  // The best `count` grasps, best first (their deferred volumes measured, when there is a
-  // `measure`). It may write those volumes into the kept grasps: one thread at a time, as offer().
+  // The best `count` grasps, best first. The volumes their order reads are measured (when there
+  // is a `measure`), the others may stay unknown. It may write those volumes into the kept
+  // grasps: one thread at a time, as offer().
   std::vector<PlannedGrasp> best(std::size_t count) const;
-  // Measures now the deferred volumes best(count) would measure, so that best(count) then
-  // measures none. A planner on a time budget calls it as it goes: the volumes are paid for
-  // inside the budget, not after it (they cost half a second for 50 grasps in a sanitizer build).
-  void measureForBest(std::size_t count);
   std::size_t size() const { return grasps_.size(); }
   int forceClosureCount() const;
 
  private:
-  // Whether best(count) ranks grasps that are not force closure, and so reads their volumes.
-  bool bestReadsVolumes(std::size_t count) const;
+  // The kept grasps best(count) ranks: the force-closure ones when there are `count` of them,
+  // else all.
+  std::vector<PlannedGrasp*> candidates(std::size_t count) const;
+  // Measures the volumes of the candidates whose order among the best `count` needs them.
+  void measureTies(std::size_t count) const;
 
   double threshold_;
   BestList::Distance distance_;
   MeasureVolume measure_;
-  mutable std::vector<PlannedGrasp> grasps_;  // mutable: best() measures deferred volumes
+  mutable std::vector<PlannedGrasp> grasps_;  // mutable: best() measures unknown volumes
 };
 
 }  // namespace graspkit
