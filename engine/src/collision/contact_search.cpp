@@ -71,24 +71,42 @@ enum class SearchEnd { AllPairs, FirstContact, FirstContactOrCrossing };
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame. Returns whether some
 // triangle pairs cross.
-bool searchPairs(const TriangleMesh& query, const Transform& query_to_target,
+bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& query_to_target,
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
                  std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs) {
+  const TriangleMesh& query = query_surface.mesh();
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
   reach.min().array() -= threshold;
   reach.max().array() += threshold;
+  // The same reach seen from the query's frame (a box around the turned box, so larger): a
+  // query triangle whose own box, kept with its mesh, misses it cannot come near the target,
+  // and is passed over without moving its corners. A dense link mesh against an object has
+  // tens of thousands of triangles and only a few near it.
+  // Grown by a micrometre, far above the rounding of either transform: the exact test below
+  // still decides, this one only passes over triangles.
+  Eigen::AlignedBox3d reach_in_query = transformedBox(reach, query_to_target.inverse());
+  reach_in_query.min().array() -= 1e-3;
+  reach_in_query.max().array() += 1e-3;
 
-  std::vector<Vector3> moved(query.vertices.size());
-  for (std::size_t i = 0; i < moved.size(); ++i) moved[i] = query_to_target * query.vertices[i];
+  // Working memory kept by each thread between searches (allocating it afresh for each search
+  // of a simulation step cost page faults); bound once, as each use of a thread_local in a
+  // shared library is a call.
+  thread_local std::vector<unsigned> candidates_memory;
+  thread_local std::vector<PointPair> pairs_memory;
+  thread_local std::vector<std::pair<unsigned, RawContact>> found_memory;
+  std::vector<unsigned>& candidates = candidates_memory;
+  std::vector<PointPair>& pairs = pairs_memory;
+  std::vector<std::pair<unsigned, RawContact>>& found = found_memory;
 
   bool intersecting = false;
-  std::vector<unsigned> candidates;
-  std::vector<PointPair> pairs;
-  std::vector<std::pair<unsigned, RawContact>> found;
   const double threshold_sq = threshold * threshold;
   for (std::size_t q = 0; q < query.triangles.size(); ++q) {
-    const Triangle tq = triangleOf(query, q, moved);
+    if (!query_surface.triangleBox(static_cast<unsigned>(q)).intersects(reach_in_query)) continue;
+    const auto& corners = query.triangles[q];
+    const Triangle tq = {query_to_target * query.vertices[corners[0]],
+                         query_to_target * query.vertices[corners[1]],
+                         query_to_target * query.vertices[corners[2]]};
     Eigen::AlignedBox3d box(tq.a);
     box.extend(tq.b).extend(tq.c);
     if (!box.intersects(reach)) continue;
@@ -260,7 +278,7 @@ struct PairSearch {
   // smaller one's triangles are much larger (a table's few against a glass's many): a search
   // around a large triangle visits everything within its bounding sphere.
   bool walk_second = false;
-  const TriangleMesh* query = nullptr;
+  std::shared_ptr<const raycast::EmbreeMesh> query;
   std::shared_ptr<const raycast::EmbreeMesh> target;
   Transform target_pose, query_to_target;
   bool reachable = false;  // the boxes come within the threshold
@@ -283,7 +301,7 @@ struct PairSearch {
     const double second_size = second_embree->meanTriangleSize();
     if (walk_second ? second_size > 4.0 * first_size : first_size > 4.0 * second_size)
       walk_second = !walk_second;
-    query = walk_second ? second_model->mesh.get() : first_model->mesh.get();
+    query = walk_second ? second_embree : first_embree;
     target = walk_second ? first_embree : second_embree;
     const Transform& query_pose = walk_second ? second_pose : first_pose;
     target_pose = walk_second ? first_pose : second_pose;
@@ -291,7 +309,7 @@ struct PairSearch {
     Eigen::AlignedBox3d reach = target->bounds();
     reach.min().array() -= threshold;
     reach.max().array() += threshold;
-    const Eigen::AlignedBox3d& query_box = (walk_second ? second_embree : first_embree)->bounds();
+    const Eigen::AlignedBox3d& query_box = query->bounds();
     reachable = transformedBox(query_box, query_to_target).intersects(reach);
   }
 };

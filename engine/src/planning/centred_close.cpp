@@ -23,13 +23,26 @@ std::set<int> touchingChains(const PlanningScene& scene, const PlannedGrasp& gra
   return chains;
 }
 
+// The chains that carry one of the scene's virtual contacts: the fingers, when the contacts sit
+// on some. A linkage's inner bars (a Robotiq's drivers) carry none: they close with the fingers
+// but never reach the object, and their gap to it says nothing of where the pads are.
+std::set<int> paddedChains(const PlanningScene& scene) {
+  std::set<int> chains;
+  for (const VirtualContact& contact : scene.virtualContactModels())
+    if (contact.finger >= 0) chains.insert(contact.finger);
+  return chains;
+}
+
 // With the hand closed in `scene`: the sum, over the chains that touch nothing, of half the
-// vector from each chain's nearest point to the object's. Nullopt when every chain touches.
+// vector from each chain's nearest point to the object's. Only chains with a virtual contact
+// count, unless no chain has one. Nullopt when every such chain touches.
 std::optional<Vector3> centringMove(const PlanningScene& scene, const PlannedGrasp& grasp) {
   const std::set<int> touching = touchingChains(scene, grasp);
+  const std::set<int> padded = paddedChains(scene);
   std::map<int, DistanceResult> gaps;  // per chain, its nearest link's
   for (const BodyRef& link : scene.handLinks()) {
     if (link.link.isBase() || touching.count(link.link.chain)) continue;
+    if (!padded.empty() && !padded.count(link.link.chain)) continue;
     const DistanceResult d = distance(scene.world(), link, scene.object());
     auto [it, added] = gaps.emplace(link.link.chain, d);
     if (!added && d.distance < it->second.distance) it->second = d;

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <random>
@@ -1106,6 +1107,62 @@ TEST(CentredClose, OffCentreParallelJawGripsWithBothJaws) {
   // Closing a fresh world from the moved pre-grasp gives the same grasp again.
   const Grasp reclosed = remeasure(world, request.object, centredGrasp);
   EXPECT_NEAR(reclosed.epsilon, centredGrasp.epsilon, 1e-6 * centredGrasp.epsilon);
+}
+
+// A linkage gripper's inner bars close with its fingers but never reach the object, so only the
+// chains with virtual contacts (its fingers) say where to move. MuJoCo Menagerie's Robotiq 2F-85
+// points down at the 60 x 60 x 120 mm box, its pads across the box's 60 mm width; moved 8 mm
+// along the way its pads close, the near pad touches alone. The centred close moves the hand
+// back over the box and grips with both pads (the two follower chains). Counting the drivers'
+// gaps too, which lie along the approach, the move pushed the palm into the box instead.
+TEST(CentredClose, LinkageGripperCentresOnItsFingersNotItsInnerBars) {
+  GRASPKIT_REQUIRE_SHARED();
+  const std::filesystem::path hand =
+      *test::sharedDir() / "hands/menagerie/robotiq_2f85_v4/2f85.xml";
+  if (!std::filesystem::exists(hand)) GTEST_SKIP() << "SKIPPED: " << hand << " not found";
+  const std::filesystem::path file = test::scratchDir() / "robotiq_box.xml";
+  std::ofstream(file) << fmt::format(
+      "<world><graspableBody><filename>{}</filename></graspableBody>"
+      "<robot><filename>{}</filename><dofValues>0</dofValues><transform>"
+      "<fullTransform>(+0 +1 +0 +0)[+8 +0 +185]</fullTransform></transform></robot></world>",
+      (test::modelsDir() / "objects" / "box.xml").string(), hand.string());
+  const World world = loadWorldFile(file);
+  PlanningRequest request;
+  request.world = std::make_shared<World>(world);
+  request.object = BodyRef::body(0);
+  request.options = {{"mode", "restarts"}};
+  const auto space = makeSearchSpace(request);
+  auto scene = makePlanningScene(request, space);
+  // The fingers are the chains the derived virtual contacts sit on: the two followers.
+  std::set<int> fingers;
+  for (const VirtualContact& contact : scene->virtualContactModels())
+    if (contact.finger >= 0) fingers.insert(contact.finger);
+  ASSERT_EQ(fingers.size(), 2u);
+  auto touching = [](const PlannedGrasp& grasp) {
+    std::set<int> chains;
+    for (const Contact& c : grasp.contactList)
+      for (const BodyRef& b : {c.body1, c.body2})
+        if (b.isLink() && !b.link.isBase()) chains.insert(b.link.chain);
+    return chains;
+  };
+
+  PlannedGrasp plain;
+  plain.pose = world.robot(0).pose();
+  plain.dofs = {0.0};
+  plain.values = space->encode(plain.pose, plain.dofs);
+  PlannedGrasp centred = plain;
+  finishGrasp(*scene, plain);
+  EXPECT_FALSE(plain.forceClosure);
+  EXPECT_EQ(touching(plain).size(), 1u);
+
+  closeCentred(*scene, centred);
+  ASSERT_TRUE(centred.forceClosure);
+  EXPECT_EQ(touching(centred), fingers);
+  // Back over the box (the pads need not meet it at one instant: within 2 of the 8 mm), and
+  // neither down along the approach nor sideways.
+  EXPECT_LT(std::abs(centred.pose.translation().x()), 2.0);
+  EXPECT_NEAR(centred.pose.translation().y(), 0.0, 1.0);
+  EXPECT_NEAR(centred.pose.translation().z(), 185.0, 1.0);
 }
 
 // A close measured for ranking builds no hull: the same contacts, the exact hull's epsilon and

@@ -8,6 +8,8 @@
 // the object gives way. closeCentred() imitates that give: after the close, for each kinematic
 // chain that touches nothing, it finds the chain's gap to the object (the FCL distance from its
 // nearest link) and moves the open hand by half of it towards the object, then closes again.
+// Where the hand's virtual contacts sit on some chains, only those count: the others are a
+// linkage's inner bars, which close with the fingers but never reach the object.
 // The moved grasp replaces the first only when betterGrasp() ranks it higher, so the rule never
 // makes a grasp worse.
 
