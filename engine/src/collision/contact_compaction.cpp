@@ -85,20 +85,21 @@ void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distan
   };
   // GraspIt! lets each contact meet the later ones in its tree's traversal order, the better
   // ranked of a duplicate pair surviving. We apply the same rule free of any order: the best
-  // ranked contact stays and removes its duplicates, then the best of the rest, and so on.
-  // Sorting indices, not the contacts: a dense mesh pressed on a face gives thousands of raw
-  // contacts, and moving them about cost more than the rest of this function.
-  std::vector<std::uint32_t> order(contacts.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return contacts[a].rank < contacts[b].rank;
-  });
+  // ranked contact stays and removes its duplicates, then the best of the rest, and so on (ties
+  // go to the earlier contact). A dense mesh pressed on a face gives tens of thousands of raw
+  // contacts and only a handful of survivors, so a pass per survivor costs far less than
+  // sorting them all.
+  std::vector<std::uint32_t> left(contacts.size());
+  std::iota(left.begin(), left.end(), 0u);
   std::vector<RawContact> kept;
-  for (const std::uint32_t index : order) {
-    const RawContact& c = contacts[index];
-    const bool duplicate =
-        std::any_of(kept.begin(), kept.end(), [&](const RawContact& k) { return same(k, c); });
-    if (!duplicate) kept.push_back(c);
+  while (!left.empty()) {
+    std::uint32_t best = left.front();
+    for (const std::uint32_t index : left)
+      if (contacts[index].rank < contacts[best].rank) best = index;
+    kept.push_back(contacts[best]);
+    std::erase_if(left, [&](std::uint32_t index) {
+      return index == best || same(kept.back(), contacts[index]);
+    });
   }
   contacts = std::move(kept);
 }
