@@ -7,11 +7,13 @@
 //  - CollisionReport at that pose (GraspIt!'s getCollisionReport: 0.23 ms).
 //  - AutoGraspQuality: autograsp + contacts + L1 epsilon + volume from the loaded pose
 //    (GraspIt!: 16 ms), and AutoGraspOnly (GraspIt!: 9.8 ms).
+//  - ContactsPadsFaceToFace: a dense gripper's pads pressed together (see below).
 
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "graspkit/base/log.hpp"
 #include "graspkit/collision/collision.hpp"
@@ -125,6 +127,36 @@ BENCHMARK_CAPTURE(BM_AutoGraspQuality, graspit_hull, HullMethod::GraspIt)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AutoGraspQuality, skip_non_force_closure, HullMethod::SkipNonForceClosure)
     ->Unit(benchmark::kMillisecond);
+
+// Menagerie's Robotiq 2F-85 closed on nothing: its two finger pads (19,134 triangles each) meet
+// face to face, as in a validation squeeze of a grasp that missed. The contact search between
+// them as a simulation step asks for it (0.7 mm, every contact kept): millions of raw triangle
+// contacts for a few dozen survivors. No GraspIt! figure; compare builds with farm-bench.
+void BM_ContactsPadsFaceToFace(benchmark::State& state) {
+  setWarningHandler([](const Warning&) {});
+  const fs::path hand = sharedDir() / "hands/menagerie/robotiq_2f85_v4/2f85.xml";
+  const fs::path object = fs::path(GRASPKIT_SOURCE_DIR) / "models/objects/box.xml";
+  if (!fs::exists(hand)) return state.SkipWithError("Menagerie's 2F-85 not found");
+  const fs::path file = fs::temp_directory_path() / "graspkit_bench_2f85_empty.xml";
+  std::ofstream(file) << "<world><graspableBody><filename>" << object.string()
+                      << "</filename><transform><fullTransform>(+1 +0 +0 +0)[+0 +0 +1000]"
+                      << "</fullTransform></transform></graspableBody><robot><filename>"
+                      << hand.string() << "</filename><dofValues>0</dofValues></robot></world>";
+  World world = loadWorldFile(file);
+  fs::remove(file);
+  autoGrasp(world, 0);
+  const BodyRef left = BodyRef::robotLink(0, {1, 1});
+  const BodyRef right = BodyRef::robotLink(0, {3, 1});
+  ContactRequest request;
+  request.threshold = 0.7;
+  request.compact = false;
+  request.graspitDuplicates = false;
+  request.touchingIsContact = true;
+  std::size_t count = 0;
+  for (auto _ : state) count = findContacts(world, left, right, request).contacts.size();
+  state.counters["contacts"] = count;
+}
+BENCHMARK(BM_ContactsPadsFaceToFace)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -77,6 +77,11 @@ Vector3 RawContact::normal() const {
   return length > 1e-12 ? Vector3(gap / length) : intoFirst;
 }
 
+namespace {
+// As findContacts' raw contacts: memory kept between calls up to this many (8 MB), no more.
+constexpr std::size_t kKeptIndices = std::size_t{1} << 21;
+}  // namespace
+
 void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distance) {
   const double limit = duplicate_distance * duplicate_distance;
   auto same = [&](const RawContact& a, const RawContact& b) {
@@ -89,9 +94,15 @@ void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distan
   // go to the earlier contact). A dense mesh pressed on a face gives tens of thousands of raw
   // contacts and only a handful of survivors, so a pass per survivor costs far less than
   // sorting them all.
-  std::vector<std::uint32_t> left(contacts.size());
+  // Both kept by each thread between calls (see findContacts: raw contacts come by the tens of
+  // thousands at every step, and fresh memory for them costs page faults).
+  thread_local std::vector<std::uint32_t> left_memory;
+  thread_local std::vector<RawContact> kept_memory;
+  std::vector<std::uint32_t>& left = left_memory;
+  std::vector<RawContact>& kept = kept_memory;
+  left.resize(contacts.size());
   std::iota(left.begin(), left.end(), 0u);
-  std::vector<RawContact> kept;
+  kept.clear();
   while (!left.empty()) {
     std::uint32_t best = left.front();
     for (const std::uint32_t index : left)
@@ -101,7 +112,8 @@ void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distan
       return index == best || same(kept.back(), contacts[index]);
     });
   }
-  contacts = std::move(kept);
+  contacts.assign(kept.begin(), kept.end());  // keeps the caller's memory
+  if (left.capacity() > kKeptIndices) std::vector<std::uint32_t>().swap(left);
 }
 
 void compactContacts(std::vector<RawContact>& contacts) {
