@@ -10,6 +10,7 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
+#include "collision/working_memory.hpp"
 #include "math/qhull_run.hpp"
 
 namespace graspkit::collision {
@@ -77,11 +78,6 @@ Vector3 RawContact::normal() const {
   return length > 1e-12 ? Vector3(gap / length) : intoFirst;
 }
 
-namespace {
-// As findContacts' raw contacts: memory kept between calls up to this many (8 MB), no more.
-constexpr std::size_t kKeptIndices = std::size_t{1} << 21;
-}  // namespace
-
 void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distance) {
   const double limit = duplicate_distance * duplicate_distance;
   auto same = [&](const RawContact& a, const RawContact& b) {
@@ -113,7 +109,8 @@ void removeDuplicates(std::vector<RawContact>& contacts, double duplicate_distan
     });
   }
   contacts.assign(kept.begin(), kept.end());  // keeps the caller's memory
-  if (left.capacity() > kKeptIndices) std::vector<std::uint32_t>().swap(left);
+  keepOrRelease(left);
+  keepOrRelease(kept);
 }
 
 void compactContacts(std::vector<RawContact>& contacts) {

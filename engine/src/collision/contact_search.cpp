@@ -5,7 +5,9 @@
 
 #include "collision/contact_compaction.hpp"
 #include "collision/contact_neighbourhood.hpp"
+#include "collision/distinct_point_pairs.hpp"
 #include "collision/triangle_contact.hpp"
+#include "collision/working_memory.hpp"
 #include "graspkit/collision/contact_patch.hpp"
 #include "graspkit/model/material.hpp"
 #include "graspkit/model/world.hpp"
@@ -107,6 +109,9 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
   std::vector<PointPair>& pairs = pairs_memory;
   std::vector<RawContact>& found = found_memory;
   std::vector<FoundRun>& runs = runs_memory;
+  thread_local collision::DistinctPointPairs distinct_memory;
+  collision::DistinctPointPairs& distinct = distinct_memory;
+  distinct.start(out);
 
   bool intersecting = false;
   const double threshold_sq = threshold * threshold;
@@ -169,9 +174,12 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
       return a.triangle != b.triangle ? a.triangle < b.triangle : a.begin < b.begin;
     });
     for (const FoundRun& run : runs)
-      out.insert(out.end(), found.begin() + run.begin, found.begin() + run.end);
+      for (std::size_t i = run.begin; i < run.end; ++i)
+        if (distinct.admit(out, found[i])) out.push_back(found[i]);
     if (end != SearchEnd::AllPairs && !out.empty()) break;
   }
+  distinct.keepOrReleaseMemory();
+  collision::keepOrRelease(found);
   return intersecting;
 }
 
@@ -351,8 +359,6 @@ bool surfacesWithin(const World& world, const BodyRef& body1, const BodyRef& bod
   return crossing || !raw.empty();
 }
 
-constexpr std::size_t kKeptRawContacts = std::size_t{1} << 21;
-
 ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,
                            const ContactRequest& request) {
   ContactResult result;
@@ -405,10 +411,7 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
     Contact c = makeContact(search.first, search.second, raw[i], first_model, second_model, patch);
     result.contacts.push_back(search.flip ? c.mate() : c);
   }
-  // Two dense meshes face to face (the 2F-85's finger pads squeezed together) gave 1.8 million
-  // raw contacts at every step and up to 8 million once: a thread keeps up to kKeptRawContacts'
-  // worth of memory (about 170 MB), not the most it ever needed.
-  if (raw.capacity() > kKeptRawContacts) std::vector<RawContact>().swap(raw);
+  collision::keepOrRelease(raw);
   return result;
 }
 

@@ -15,8 +15,10 @@ namespace graspkit {
 class World;
 
 struct ContactRequest {
-  double threshold = kContactThreshold;           // mm
-  double duplicateDistance = kDuplicateDistance;  // mm
+  double threshold = kContactThreshold;  // mm
+  // mm; point pairs repeated exactly (the same vertex near the same face, found from each
+  // triangle around it) count once whatever this is.
+  double duplicateDistance = kDuplicateDistance;
   bool compact = true;       // keep only the perimeter of contacts that share a normal
   bool softContacts = true;  // elastic bodies make soft-finger contacts (GraspIt!'s default)
   // Which of two duplicate contacts survives. GraspIt! keeps the one whose two points, each
