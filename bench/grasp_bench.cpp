@@ -130,8 +130,9 @@ BENCHMARK_CAPTURE(BM_AutoGraspQuality, skip_non_force_closure, HullMethod::SkipN
 
 // Menagerie's Robotiq 2F-85 closed on nothing: its two finger pads (19,134 triangles each) meet
 // face to face, as in a validation squeeze of a grasp that missed. The contact search between
-// them as a simulation step asks for it (0.7 mm, every contact kept): millions of raw triangle
-// contacts for a few dozen survivors. No GraspIt! figure; compare builds with farm-bench.
+// them as a simulation step asks for it (0.7 mm, every contact kept): about 2 million point
+// pairs from the triangle tests, a quarter million of them distinct, for a few dozen survivors. No
+// GraspIt! figure; compare builds with farm-bench.
 void BM_ContactsPadsFaceToFace(benchmark::State& state) {
   setWarningHandler([](const Warning&) {});
   const fs::path hand = sharedDir() / "hands/menagerie/robotiq_2f85_v4/2f85.xml";

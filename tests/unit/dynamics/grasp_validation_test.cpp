@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -352,6 +353,46 @@ TEST(GraspValidation, ThreadsGiveEachGraspWhatItGetsAlone) {
       EXPECT_EQ(result.directions[k].slip, alone.directions[k].slip);
       EXPECT_EQ(result.directions[k].turn, alone.directions[k].turn);
     }
+  }
+}
+
+// A grasp that missed: the box is turned 45 degrees about y and its top edge pokes 4 mm up between
+// the jaws' tips, which start 16 mm apart. Closing, they catch the edge's slopes and knock the box
+// out downwards; it drifts away untouched (the squeeze has no gravity) while the jaws meet and
+// stop. The box never comes to rest, so the settle used to run its whole 2 s; it now ends once
+// nothing touches the box and the DOF is still. Not held, in every direction tried, either way.
+TEST(GraspValidation, ASqueezeThatKnocksTheObjectAwayEndsWhenTheHandIsStill) {
+  World world = loadWorldFile(test::modelsDir() / "worlds" / "gripper_box.xml");
+  int box = -1;
+  for (int b = 0; b < static_cast<int>(world.bodies().size()); ++b)
+    if (world.bodies()[b].name == "box") box = b;
+  ASSERT_GE(box, 0);
+  Transform pose = Transform::Identity();
+  pose.rotate(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vector3::UnitY()));
+  Vector3 highest = Vector3::Constant(-1e9);
+  for (const Vector3& v : world.bodies()[box].model->mesh->vertices)
+    if ((pose * v).z() > highest.z()) highest = pose * v;
+  const double jaw_tips = 70.0;  // mm above the floor (the jaws reach 50 mm over the 120 mm box)
+  pose.pretranslate(Vector3(-highest.x(), 0.0, jaw_tips + 4.0 - highest.z()));
+  world.bodies()[box].setPose(pose);
+  const std::vector<double> posture = {32.0};  // each jaw 32 mm in: 8 mm from the middle
+  world.setDofValues(0, posture);
+
+  ValidationRequest request;
+  request.seconds = 0.5;
+  for (const bool all : {false, true}) {
+    SCOPED_TRACE(all ? "all directions" : "first let go");
+    request.allDirections = all;
+    const ValidationResult result = validateGrasp(world, 0, box, request);
+    EXPECT_GT(result.settleSeconds, 0.2);  // the jaws closed 8 mm at 10 mm/s first
+    EXPECT_LT(result.settleSeconds, request.settleSeconds - 0.5);
+    EXPECT_FALSE(result.held);
+    int tried = 0;
+    for (const DirectionResult& d : result.directions) {
+      EXPECT_EQ(d.failure, "");
+      tried += d.tried;
+    }
+    EXPECT_EQ(tried, all ? 6 : 1);
   }
 }
 

@@ -22,7 +22,9 @@ struct ValidationRequest {
   // distal link keeps turning to its limit at the DOF's speed (Barrett: about 1.5 s), and a pull
   // that began while they moved could not end at rest before they stopped, so every held
   // direction ran its whole time. The settle ends at rest whatever stopAtRest says, so that a
-  // run with stopAtRest false tries each direction from the same squeeze.
+  // run with stopAtRest false tries each direction from the same squeeze. It also ends once
+  // nothing touches the object and the hand's DOFs are still (as below) for restSeconds: a
+  // finger that missed can knock the object, which then drifts on and never comes to rest.
   double settleSeconds = 2.0;
   double maxSlip = 5.0;                              // mm, the object's travel relative to the palm
   double maxTurn = 15.0 * 3.14159265358979 / 180.0;  // rad
@@ -61,6 +63,7 @@ struct ValidationResult {
   std::array<DirectionResult, 6> directions;  // +x, -x, +y, -y, +z, -z
   bool held = false;                          // every direction held
   int directionsHeld = 0;                     // of the directions tried
+  double settleSeconds = 0.0;                 // simulated: the squeeze before the pulls
 };
 
 // Validates the grasp of body `object` by robot `robot` as `world` stands (the hand closed on

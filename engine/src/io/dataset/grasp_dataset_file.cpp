@@ -46,7 +46,8 @@ namespace fs = std::filesystem;
 
 // 2: /grasps/validation, and /object/file and /hand/file relative to the dataset file's folder.
 // 3: a validated grasp's direction may be -1: not tried, as a validation that stops at the first
-//    direction let go leaves those after it.
+//    direction let go leaves the pulls it cut short (any of the six, +x too: they take their
+//    steps by turns). A validated grasp has at least one direction tried.
 constexpr int kSchemaVersion = 3;
 constexpr int kOldestSchemaVersion = 1;
 constexpr hsize_t kDirections = 6;
@@ -241,6 +242,10 @@ void writeFile(const GraspDataset& dataset, const fs::path& file, hid_t handle) 
       throw Error(
           SourceLocation{file.string()},
           fmt::format("a grasp's validation has {} directions, not 6", g.validation.size()));
+    if (!g.validation.empty() && std::none_of(g.validation.begin(), g.validation.end(),
+                                              [](const DatasetDirection& d) { return d.tried; }))
+      throw Error(SourceLocation{file.string()},
+                  "a grasp's validation has no direction tried: it would read back as none");
     for (std::size_t k = 0; k < kDirections; ++k) {
       const DatasetDirection d = g.validation.empty() ? DatasetDirection{} : g.validation[k];
       direction_held.push_back(g.validation.empty() || !d.tried ? -1 : d.held ? 1 : 0);
@@ -521,11 +526,18 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     if (held[i] < -1 || held[i] > 1)
       r.fail("/grasps/qualities/held", "holds a value not -1, 0 or 1");
     g.held = held[i];
-    if (schema >= 2 && direction_held[i * kDirections] != -1) {
+    bool validated = false;  // schema 1 has no directions
+    if (schema >= 2) {
+      const auto row = direction_held.begin() + static_cast<long>(i * kDirections);
+      validated = schema == 2
+                      ? *row != -1
+                      : std::any_of(row, row + kDirections, [](auto held) { return held != -1; });
+    }
+    if (validated) {
       for (std::size_t k = 0; k < kDirections; ++k) {
         const std::size_t at = i * kDirections + k;
-        // The first direction is always tried; since schema 3 a later one may not be.
-        const bool untried = schema >= 3 && k > 0 && direction_held[at] == -1;
+        // Schema 2 tried every direction; since schema 3 any may be left untried.
+        const bool untried = schema >= 3 && direction_held[at] == -1;
         if (direction_held[at] != 0 && direction_held[at] != 1 && !untried)
           r.fail("/grasps/validation/held",
                  fmt::format("holds {} for grasp {}, direction {}: a validated grasp's "

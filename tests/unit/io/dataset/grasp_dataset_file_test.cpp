@@ -183,6 +183,35 @@ TEST(GraspDatasetFile, DirectionsAfterTheFirstLetGoLoadBackUntried) {
   }
 }
 
+TEST(GraspDatasetFile, AnyDirectionMayBeTheOneTried) {
+  // The six pulls take their steps by turns, so the one let go can be any of them, and +x can
+  // be among those cut short. Such a grasp read back as not validated at all.
+  GraspDataset saved = twoGrasps();
+  std::vector<DatasetDirection>& directions = saved.grasps[0].validation;
+  for (std::size_t k = 0; k < 6; ++k) {
+    if (k == 3) continue;
+    directions[k] = {directions[k].direction};
+    directions[k].tried = false;
+  }
+  directions[3].held = false;
+  saved.grasps[0].held = 0;
+  const fs::path file = test::scratchDir() / "minus_y_let_go.h5";
+  saveGraspDataset(saved, file);
+  const GraspDataset loaded = loadGraspDataset(file);
+  ASSERT_EQ(loaded.grasps[0].validation.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const DatasetDirection& d = loaded.grasps[0].validation[k];
+    EXPECT_EQ(d.tried, k == 3) << k;
+    EXPECT_FALSE(d.held) << k;
+    EXPECT_EQ(d.slip, directions[k].slip) << k;
+    EXPECT_EQ(d.seconds, directions[k].seconds) << k;
+  }
+  EXPECT_EQ(loaded.grasps[0].held, 0);
+  // A validation with nothing tried could only read back as none: it is refused when saved.
+  directions[3].tried = false;
+  EXPECT_THROW(saveGraspDataset(saved, test::scratchDir() / "nothing_tried.h5"), Error);
+}
+
 TEST(GraspDatasetFile, NamesItsFilesFromAnyWorkingFolder) {
   // A project with its objects and a dataset folder; the dataset is written from the project's
   // folder with the names batch gives (relative to it), and read from elsewhere.
