@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <shared_mutex>
@@ -254,6 +255,22 @@ std::shared_ptr<const CollisionGeometry> collisionGeometry(
     const std::shared_ptr<const TriangleMesh>& mesh) {
   if (!mesh || mesh->empty()) return nullptr;
   return cache().get(mesh);
+}
+
+const CollisionGeometry* collisionGeometryOf(const std::shared_ptr<const TriangleMesh>& mesh) {
+  if (!mesh) return nullptr;
+  // Direct-mapped by address. An entry is this mesh's only if it shares the mesh's control block
+  // (another mesh may since have been made at a dead one's address).
+  struct Remembered {
+    std::weak_ptr<const TriangleMesh> mesh;
+    const CollisionGeometry* geometry = nullptr;
+  };
+  thread_local std::array<Remembered, 64> remembered;
+  Remembered& slot =
+      remembered[(reinterpret_cast<std::uintptr_t>(mesh.get()) >> 4) % remembered.size()];
+  const bool same = !slot.mesh.owner_before(mesh) && !mesh.owner_before(slot.mesh);
+  if (!same) slot = {mesh, collisionGeometry(mesh).get()};
+  return slot.geometry;
 }
 
 }  // namespace graspkit

@@ -43,6 +43,12 @@ inline WorldBox worldBox(const CollisionGeometry& geometry, const Transform& pos
   return {pose * geometry.boxCenter, pose.linear().cwiseAbs() * geometry.boxHalfSize};
 }
 
+// collisionGeometry(mesh) without its shared lock and reference count, for queries that look
+// every body up at every call: a few recent meshes are remembered per thread. The pointer stays
+// valid while `mesh` lives (the cache drops an entry only once its mesh has died). Null for an
+// empty or flat mesh.
+const CollisionGeometry* collisionGeometryOf(const std::shared_ptr<const TriangleMesh>& mesh);
+
 // Whether the convex hulls of two placed meshes are certainly apart, so the meshes cannot touch.
 // FCL's GJK proposes the axis through the hulls' nearest points; the certificate is that every
 // hull vertex of one lies below, and every one of the other above, a plane across that axis,

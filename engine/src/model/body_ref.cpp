@@ -88,20 +88,36 @@ std::string bodyName(const World& world, const BodyRef& ref) {
   return world.robot(world.connections()[ref.index].childRobot).name() + "_mount";
 }
 
-std::vector<BodyRef> worldBodies(const World& world) {
-  std::vector<BodyRef> refs;
-  auto add = [&](const BodyRef& ref) {
-    if (isValid(world, ref) && bodyModel(world, ref).mesh) refs.push_back(ref);
+void placeWorldBodies(const World& world, std::vector<PlacedBody>& out) {
+  out.clear();
+  auto add = [&](const BodyRef& ref, const BodyModel* model, const Transform& pose) {
+    if (model && model->mesh) out.push_back({ref, model, pose});
   };
-  for (int b = 0; b < static_cast<int>(world.bodies().size()); ++b) add(BodyRef::body(b));
+  const auto& bodies = world.bodies();
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b)
+    add(BodyRef::body(b), bodies[b].model.get(), bodies[b].pose);
   for (int r = 0; r < world.robotCount(); ++r) {
-    add(BodyRef::robotBase(r));
-    const auto& chains = world.robot(r).model().chains;
-    for (int c = 0; c < static_cast<int>(chains.size()); ++c)
-      for (int l = 0; l < static_cast<int>(chains[c].links.size()); ++l)
-        add(BodyRef::robotLink(r, {c, l}));
+    const Robot& robot = world.robot(r);
+    const RobotModel& model = robot.model();
+    add(BodyRef::robotBase(r), model.palm.get(), robot.pose());
+    for (int c = 0; c < static_cast<int>(model.chains.size()); ++c) {
+      const auto& links = model.chains[c].links;
+      for (int l = 0; l < static_cast<int>(links.size()); ++l)
+        add(BodyRef::robotLink(r, {c, l}), links[l].body.get(), robot.linkPose({c, l}));
+    }
   }
-  for (int m = 0; m < static_cast<int>(world.connections().size()); ++m) add(BodyRef::mount(m));
+  const auto& connections = world.connections();
+  for (int m = 0; m < static_cast<int>(connections.size()); ++m)
+    if (const BodyModel* mount = connections[m].mount.get())
+      add(BodyRef::mount(m), mount, world.mountPose(connections[m]));
+}
+
+std::vector<BodyRef> worldBodies(const World& world) {
+  std::vector<PlacedBody> placed;
+  placeWorldBodies(world, placed);
+  std::vector<BodyRef> refs;
+  refs.reserve(placed.size());
+  for (const PlacedBody& body : placed) refs.push_back(body.ref);
   return refs;
 }
 

@@ -55,4 +55,16 @@ std::optional<BodyRef> findBodyRef(const World& world, const std::string& name);
 // and links chain by chain, then mount pieces.
 std::vector<BodyRef> worldBodies(const World& world);
 
+// One of worldBodies() with its model and pose, found in one walk of the world.
+struct PlacedBody {
+  BodyRef ref;
+  const BodyModel* model = nullptr;  // never null; owned by the world
+  Transform pose;
+};
+
+// worldBodies(), each with its model and pose, into `out` (cleared first). Queries that place
+// every body at each call (a collision report at each step of a close) take this walk instead of
+// looking each ref up again, and keep `out` between calls so that a call allocates nothing.
+void placeWorldBodies(const World& world, std::vector<PlacedBody>& out);
+
 }  // namespace graspkit
