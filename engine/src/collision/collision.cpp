@@ -15,6 +15,7 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/collision_geometry.hpp"
+#include "collision/working_memory.hpp"
 #include "graspkit/model/collision_filter.hpp"
 #include "graspkit/model/world.hpp"
 
@@ -106,11 +107,17 @@ struct PlacedWorld {
 };
 
 // The world placed into this thread's scene, whose vectors are kept between queries: a close
-// asks for a report at every step. No query calls another while it holds the scene.
+// asks for a report at every step. No query calls another while it holds the scene. The scene is
+// handed out by reference, so the last query's vectors are measured against the working-memory
+// rule here, before they are filled again, rather than after use.
 const PlacedWorld& placeWorld(const World& world, std::span<const BodyRef> interest,
                               double margin) {
   thread_local std::vector<PlacedBody> bodies;
   thread_local PlacedWorld out;
+  collision::keepOrRelease(bodies);
+  collision::keepOrRelease(out.placed);
+  collision::keepOrRelease(out.boxes);
+  collision::keepOrRelease(out.interesting);
   placeWorldBodies(world, bodies);
   out.placed.clear();
   out.boxes.clear();
