@@ -62,6 +62,14 @@ Transform heldPose(const World& world, int robot) {
   return world.robot(robot).pose().inverse() * world.bodies()[0].pose;
 }
 
+// The fastest of the hand's DOFs, as the speed of a point `radius` from the joint: the rest
+// watches compare it with restSpeed (mm/s), the object's size standing for the lever.
+double handSpeed(const World& world, int robot, double radius) {
+  double speed = 0.0;
+  for (double v : world.robot(robot).dofVelocities()) speed = std::max(speed, radius * std::abs(v));
+  return speed;
+}
+
 // Whether the hand and the object have come to rest: the object and the hand's DOFs slower than
 // restSpeed, and each pair of bodies' force steady, for restSeconds; or, where a pair's force
 // has wandered, the speed gaining too slowly to reach restSpeed within a run for 0.5 s.
@@ -90,9 +98,9 @@ class RestWatch {
 
   bool atRest(const World& world, int robot) {
     const Body& object = world.bodies()[0];
-    double speed = object.state.v.head<3>().norm() + radius_ * object.state.v.tail<3>().norm();
-    for (double v : world.robot(robot).dofVelocities())
-      speed = std::max(speed, radius_ * std::abs(v));
+    const double speed =
+        std::max(object.state.v.head<3>().norm() + radius_ * object.state.v.tail<3>().norm(),
+                 handSpeed(world, robot, radius_));
     PairForces now = pairForces(world.lastImpulses());
     PairForces mean = now;
     if (!averaged(previous_, mean)) mean.clear();
@@ -191,8 +199,7 @@ class FreeObjectWatch {
     bool still = true;
     for (const ContactImpulse& c : world.lastImpulses())
       if (c.body1 == object || c.body2 == object) still = false;
-    for (double v : world.robot(robot).dofVelocities())
-      if (radius_ * std::abs(v) > request_.restSpeed) still = false;
+    if (handSpeed(world, robot, radius_) > request_.restSpeed) still = false;
     if (!still) {
       since_.reset();
       return false;

@@ -529,9 +529,9 @@ GraspDataset readFile(const fs::path& file, hid_t handle) {
     bool validated = false;  // schema 1 has no directions
     if (schema >= 2) {
       const auto row = direction_held.begin() + static_cast<long>(i * kDirections);
-      validated = schema == 2
-                      ? *row != -1
-                      : std::any_of(row, row + kDirections, [](auto held) { return held != -1; });
+      validated = schema == 2 ? *row != -1
+                              : std::any_of(row, row + kDirections,
+                                            [](std::int8_t direction) { return direction != -1; });
     }
     if (validated) {
       for (std::size_t k = 0; k < kDirections; ++k) {
