@@ -186,18 +186,20 @@ int simulateWorld(lua_State* L) {
 
 // world:validate{seconds = 2}: the grasp the world holds (its first hand closed on its first
 // graspable body) labelled as `graspkit validate` labels it -> {held, directions_held,
-// directions = {{direction, held, slip_mm, turn_deg, seconds [, failure]}, ...}}
+// settle_seconds, directions = {{direction, held, slip_mm, turn_deg, seconds [, failure]}, ...}}
 int validateWorld(lua_State* L) {
   const ScriptWorld& world = toWorld(L, 1);
   const OptionsTable options(L, 2, {"seconds"});
   ValidationRequest request;
   request.seconds = options.number("seconds", request.seconds);
   const ValidationResult result = host::validateWorld(world.world, request);
-  lua_createtable(L, 0, 3);
+  lua_createtable(L, 0, 4);
   lua_pushboolean(L, result.held);
   lua_setfield(L, -2, "held");
   lua_pushinteger(L, result.directionsHeld);
   lua_setfield(L, -2, "directions_held");
+  lua_pushnumber(L, result.settleSeconds);
+  lua_setfield(L, -2, "settle_seconds");
   lua_createtable(L, 6, 0);
   for (int k = 0; k < 6; ++k) {
     const DirectionResult& d = result.directions[k];

@@ -31,7 +31,8 @@ local grasp = {epsilon = measured:epsilon(), volume = measured:volume(),
 local held = graspkit.load_world(grasp_world):validate{seconds = seconds}
 local slip = {}
 for i, d in ipairs(held.directions) do slip[i] = d.slip_mm end
-local validation = {held = held.held, directions_held = held.directions_held, slip = slip}
+local validation = {held = held.held, directions_held = held.directions_held,
+                    settle_seconds = held.settle_seconds, slip = slip}
 
 local moving = graspkit.load_world(grasp_world)
 local run = moving:simulate{seconds = seconds, autograsp = true}

@@ -35,6 +35,7 @@ def main():
 
     held = graspkit.validate(graspkit.load_world(grasp_world, roots=[root]), seconds=seconds)
     validation = {"held": held["held"], "directions_held": held["directions_held"],
+                  "settle_seconds": held["settle_seconds"],
                   "slip": [d["slip_mm"] for d in held["directions"]]}
 
     moving = graspkit.load_world(grasp_world, roots=[root])

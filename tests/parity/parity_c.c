@@ -92,8 +92,10 @@ int main(int argc, char** argv) {
   graspkit_world* held = load(grasp_world, root);
   graspkit_validation validation;
   check(graspkit_validate(held, seconds, &validation), "validate");
-  printf("\"validation\": {\"held\": %s, \"directions_held\": %d, \"slip\": [",
-         validation.held ? "true" : "false", validation.directions_held);
+  printf(
+      "\"validation\": {\"held\": %s, \"directions_held\": %d, \"settle_seconds\": %.17g, "
+      "\"slip\": [",
+      validation.held ? "true" : "false", validation.directions_held, validation.settle_seconds);
   for (int k = 0; k < 6; ++k) printf("%s%.17g", k ? ", " : "", validation.directions[k].slip);
   printf("]}, ");
   graspkit_world_free(held);

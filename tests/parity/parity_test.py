@@ -81,6 +81,7 @@ def cli_report(graspkit, world, root, grasp_world, work):
                   "contacts": len(grasp["contacts"]), "force_closure": grasp["force_closure"]},
         "validation": {"held": validation["held"],
                        "directions_held": validation["directions_held"],
+                       "settle_seconds": validation["settle_seconds"],
                        "slip": [d["slip_mm"] for d in validation["directions"]]},
         "simulation": {"completed": simulation["completed"], "steps": simulation["steps"],
                        "time": simulation["time"],

@@ -25,6 +25,7 @@ json validationJson(const ValidationResult& result) {
   }
   return {{"held", result.held},
           {"directions_held", result.directionsHeld},
+          {"settle_seconds", result.settleSeconds},
           {"directions", directions}};
 }
 

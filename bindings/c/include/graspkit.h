@@ -41,7 +41,7 @@ extern "C" {
 #endif
 
 /* The ABI's version: raised whenever a signature, a struct layout or an enum value changes. */
-#define GRASPKIT_ABI_VERSION 2
+#define GRASPKIT_ABI_VERSION 3
 
 typedef enum graspkit_status {
   GRASPKIT_OK = 0,
@@ -417,6 +417,7 @@ typedef struct graspkit_validation {
   int held; /* every direction held */
   int32_t directions_held;
   graspkit_direction_result directions[6];
+  double settle_seconds; /* simulated: the squeeze before the pulls */
 } graspkit_validation;
 
 /* Labels the grasp the world holds (its first hand closed on its first graspable body) as

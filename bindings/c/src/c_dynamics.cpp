@@ -85,6 +85,7 @@ graspkit_status graspkit_validate(const graspkit_world* world, double seconds,
     const ValidationResult result = host::validateWorld(w, request);
     out.held = result.held ? 1 : 0;
     out.directions_held = result.directionsHeld;
+    out.settle_seconds = result.settleSeconds;
     for (std::size_t k = 0; k < 6; ++k) {
       const DirectionResult& d = result.directions[k];
       graspkit_direction_result& o = out.directions[k];

@@ -70,6 +70,7 @@ py::dict validationDict(const ValidationResult& result) {
   py::dict d;
   d["held"] = result.held;
   d["directions_held"] = result.directionsHeld;
+  d["settle_seconds"] = result.settleSeconds;
   d["directions"] = directions;
   return d;
 }
@@ -119,7 +120,8 @@ void bindDynamics(py::module_& m) {
       py::arg("world"), py::kw_only(), py::arg("seconds") = ValidationRequest{}.seconds,
       "Labels the grasp a world holds (its first hand closed on its first graspable body) as "
       "`graspkit validate` does: the object's weight turned along +x, -x, +y, -y, +z, -z -> "
-      "{held, directions_held, directions: [{direction, held, slip_mm, turn_deg, seconds}]}. "
+      "{held, directions_held, settle_seconds, directions: [{direction, held, slip_mm, turn_deg, "
+      "seconds}]}. "
       "The world is not changed.");
 }
 

@@ -6,7 +6,7 @@
 use std::os::raw::{c_char, c_double, c_int, c_void};
 
 /// The ABI version these declarations follow (`GRASPKIT_ABI_VERSION`).
-pub const GRASPKIT_ABI_VERSION: u32 = 2;
+pub const GRASPKIT_ABI_VERSION: u32 = 3;
 
 /// `graspkit_status`.
 pub type graspkit_status = c_int;
@@ -212,6 +212,7 @@ pub struct graspkit_validation {
     pub held: c_int,
     pub directions_held: i32,
     pub directions: [graspkit_direction_result; 6],
+    pub settle_seconds: c_double,
 }
 
 #[repr(C)]
@@ -619,7 +620,7 @@ mod tests {
         assert_eq!(size_of::<graspkit_simulation_options>(), 72);
         assert_eq!(size_of::<graspkit_simulation_result>(), 16 + 24);
         assert_eq!(size_of::<graspkit_direction_result>(), 56);
-        assert_eq!(size_of::<graspkit_validation>(), 8 + 6 * 56);
+        assert_eq!(size_of::<graspkit_validation>(), 8 + 6 * 56 + 8);
         assert_eq!(size_of::<graspkit_render_options>(), 24);
         assert_eq!(size_of::<graspkit_dataset_options>(), 40);
         assert_eq!(size_of::<graspkit_dataset_grasp>(), 2 * 56 + 32);

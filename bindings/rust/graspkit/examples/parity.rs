@@ -98,7 +98,7 @@ fn main() -> graspkit::Result<()> {
         .collect();
     println!(
         "{{\"plan\": [{}], \"grasp\": {{\"epsilon\": {:e}, \"volume\": {:e}, \"contacts\": {}, \"force_closure\": {}}}, \
-         \"validation\": {{\"held\": {}, \"directions_held\": {}, \"slip\": [{}]}}, \
+         \"validation\": {{\"held\": {}, \"directions_held\": {}, \"settle_seconds\": {:e}, \"slip\": [{}]}}, \
          \"simulation\": {{\"completed\": {}, \"steps\": {}, \"time\": {:e}, \"bodies\": [{}], \"dofs\": [{}]}}, \"dataset\": [{}]}}",
         grasps.join(", "),
         quality.epsilon,
@@ -107,6 +107,7 @@ fn main() -> graspkit::Result<()> {
         quality.force_closure,
         held.held,
         held.directions_held,
+        held.settle_seconds,
         slips.join(", "),
         run.completed,
         run.steps,

@@ -101,6 +101,8 @@ pub struct Validation {
     pub directions_held: i32,
     /// +x, -x, +y, -y, +z, -z.
     pub directions: Vec<DirectionResult>,
+    /// Simulated seconds of the squeeze before the pulls.
+    pub settle_seconds: f64,
 }
 
 /// A picture's settings. `Default` is `graspkit render`'s: 640 x 480, auto camera.
@@ -183,6 +185,7 @@ impl World {
         Ok(Validation {
             held: raw.held != 0,
             directions_held: raw.directions_held,
+            settle_seconds: raw.settle_seconds,
             directions: raw
                 .directions
                 .iter()
