@@ -227,6 +227,14 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
     if (gap > by) return true;
     if (gap > 0 && by > 0) return false;  // apart, but maybe not by enough: GJK would not say more
   }
+  // The axis between the boxes' centres: two scans of hull vertices, a tenth of GJK's cost, and it
+  // separates most pairs whose last axis no longer does (a link that turned past the other).
+  if (const Vector3 between = pose_b * b.boxCenter - pose_a * a.boxCenter;
+      between.squaredNorm() > 0) {
+    const double gap = separationAlong(memory, between.normalized(), a, pose_a, b, pose_b);
+    if (gap > by) return true;
+    if (gap > 0 && by > 0) return false;
+  }
   // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
   // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
   if (memory.skip > 0) {
