@@ -220,21 +220,23 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
   if (certified(memory, a, pose_a, b, pose_b, by)) return true;
+  // A cheap axis (world, unit) settles the question when it certifies a gap: one wider than `by`
+  // proves it; a narrower one says apart, but maybe not by enough, and GJK would not say more.
+  auto settledAlong = [&](const Vector3& n) -> std::optional<bool> {
+    const double gap = separationAlong(memory, n, a, pose_a, b, pose_b);
+    if (gap > by) return true;
+    if (gap > 0 && by > 0) return false;
+    return std::nullopt;
+  };
   // The axis that separated them in the nearest placement, first: nearby poses are usually still
   // apart by it.
-  if (const Vector3 axis = nearestCertificate(memory, pose_a, pose_b, false).axis; !axis.isZero()) {
-    const double gap = separationAlong(memory, pose_a.linear() * axis, a, pose_a, b, pose_b);
-    if (gap > by) return true;
-    if (gap > 0 && by > 0) return false;  // apart, but maybe not by enough: GJK would not say more
-  }
+  if (const Vector3 axis = nearestCertificate(memory, pose_a, pose_b, false).axis; !axis.isZero())
+    if (const auto settled = settledAlong(pose_a.linear() * axis)) return *settled;
   // The axis between the boxes' centres: two scans of hull vertices, a tenth of GJK's cost, and it
   // separates most pairs whose last axis no longer does (a link that turned past the other).
   if (const Vector3 between = pose_b * b.boxCenter - pose_a * a.boxCenter;
-      between.squaredNorm() > 0) {
-    const double gap = separationAlong(memory, between.normalized(), a, pose_a, b, pose_b);
-    if (gap > by) return true;
-    if (gap > 0 && by > 0) return false;
-  }
+      between.squaredNorm() > 0)
+    if (const auto settled = settledAlong(between.normalized())) return *settled;
   // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
   // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
   if (memory.skip > 0) {
