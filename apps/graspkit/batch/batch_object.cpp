@@ -60,6 +60,7 @@ DatasetRequest datasetRequest(const BatchOptions& options, const fs::path& objec
   request.validate = options.validate;
   request.validateSeconds = options.validateSeconds;
   request.validateAllDirections = options.validateAllDirections;
+  request.validateStatics = options.validateStatics;
   request.seed = options.seed;
   return request;
 }

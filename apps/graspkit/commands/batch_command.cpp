@@ -72,6 +72,8 @@ json settingsJson(const BatchOptions& options) {
   if (options.validate) {
     settings["validate_seconds"] = options.validateSeconds;
     settings["validate_all_directions"] = options.validateAllDirections;
+    // Only when set, so that manifests written before the flag existed still resume.
+    if (options.validateStatics) settings["validate_statics"] = true;
   }
   return settings;
 }
@@ -112,6 +114,9 @@ void addBatchCommand(CLI::App& app, BatchOptions& options) {
   cmd->add_flag("--validate-all-directions", options.validateAllDirections,
                 "--validate: try all six directions of every grasp (by default a grasp's "
                 "directions stop at the first it lets go: the same held label, the rest untried)");
+  cmd->add_flag("--validate-statics", options.validateStatics,
+                "--validate: a direction that statics shows the grasp bears with margins is held "
+                "after a 0.025 s probe instead of a run to rest (graspkit validate --statics)");
   cmd->add_option("--seed", options.seed, "The planner's seed, the same for every object")
       ->check(seedNumber())
       ->default_val(defaults.seed);

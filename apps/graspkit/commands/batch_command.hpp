@@ -24,6 +24,7 @@ struct BatchOptions {
   bool validate = false;
   double validateSeconds = 2.0;
   bool validateAllDirections = false;  // false: a grasp's directions stop at the first let go
+  bool validateStatics = false;        // true: directions statics shows held are not simulated
   std::uint64_t seed = 1;
   std::string shard;  // K/N
   double objectTimeout = 1800.0;

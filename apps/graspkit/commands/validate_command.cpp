@@ -67,12 +67,17 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
       ->check(positiveFinite());
   cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)")
       ->check(CLI::Range(1, 4096));
+  cmd->add_flag("--statics", options.statics,
+                "A direction that statics shows the grasp bears with margins (twice the weight, "
+                "disturbing wrenches) is held after a 0.025 s probe instead of a run to rest: "
+                "faster, the same labels on planned grasps (docs/dynamics.md)");
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 
 int runValidate(const ValidateOptions& options, std::ostream& out) {
   ValidationRequest request;
   request.seconds = options.seconds;
+  request.statics = options.statics;
   const std::vector<SceneFrame> frames = loadFrames(
       {.input = options.input, .load = options.load, .grasp = options.grasp, .top = options.top});
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -18,6 +18,7 @@ struct ValidateOptions {
   int grasp = 0;
   int top = 0;
   double seconds = 2.0;
+  bool statics = false;  // directions statics shows held are not simulated
   std::optional<int> threads;  // every core when unset
   bool json = false;
 };

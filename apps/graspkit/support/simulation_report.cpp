@@ -19,7 +19,8 @@ json validationJson(const ValidationResult& result) {
                   {"held", d.held},
                   {"slip_mm", d.slip},
                   {"turn_deg", d.turn * 180.0 / M_PI},
-                  {"seconds", d.seconds}};
+                  {"seconds", d.seconds},
+                  {"by_statics", d.byStatics}};
     if (!d.failure.empty()) entry["failure"] = d.failure;
     directions.push_back(entry);
   }
@@ -33,6 +34,10 @@ std::string validationLine(const ValidationResult& result) {
   std::string line = result.held ? "held" : "not held";
   for (int k = 0; k < 6; ++k) {
     const DirectionResult& d = result.directions[k];
+    if (d.byStatics) {
+      line += fmt::format("  {} ok (statics)", kValidationDirections[k]);
+      continue;
+    }
     line += fmt::format("  {} {} ({:.1f} mm, {:.0f} deg)", kValidationDirections[k],
                         d.held ? "ok" : "lost", d.slip, d.turn * 180.0 / M_PI);
   }

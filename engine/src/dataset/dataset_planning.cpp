@@ -89,6 +89,7 @@ GraspDataset planGraspDataset(const DatasetRequest& request) {
     ValidationRequest validation;
     validation.seconds = request.validateSeconds;
     validation.allDirections = request.validateAllDirections;
+    validation.statics = request.validateStatics;
     std::vector<World> worlds;
     for (const PlannedGrasp& g : run.grasps) worlds.push_back(graspWorld(plan, g));
     const auto results = validateGrasps(worlds, 0, 0, validation, 1);

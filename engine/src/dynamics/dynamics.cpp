@@ -431,7 +431,8 @@ std::vector<ContactImpulse> contactImpulses(const Constraints& constraints,
     if (r.isZero()) continue;
     impulses.push_back({constraints.bodies[c].first, constraints.bodies[c].second,
                         constraints.localPoints[c],
-                        r[0] * frame.col(2) + r[1] * frame.col(0) + r[2] * frame.col(1)});
+                        r[0] * frame.col(2) + r[1] * frame.col(0) + r[2] * frame.col(1),
+                        frame.col(2), constraints.mu[c]});
   }
   return impulses;
 }

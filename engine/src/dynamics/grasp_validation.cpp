@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "graspkit/base/parallel_for.hpp"
+#include "graspkit/dynamics/static_hold.hpp"
 #include "graspkit/model/world.hpp"
 
 namespace graspkit {
@@ -24,6 +25,12 @@ void checkRequest(const ValidationRequest& request) {
       !(std::isfinite(request.restSeconds) && request.restSeconds >= 0.0) ||
       !(std::isfinite(request.settleSeconds) && request.settleSeconds >= 0.0)) {
     throw Error("grasp validation: seconds, slip, turn and gravity must be positive numbers");
+  }
+  if (!(std::isfinite(request.staticsProbeSeconds) && request.staticsProbeSeconds >= 0.0) ||
+      !(request.staticsProbeShare > 0.0 && request.staticsProbeShare <= 1.0)) {
+    throw Error(
+        "grasp validation: the statics' probe must last 0 s or more, and its share of the "
+        "let-go limits be within (0, 1]");
   }
   if (!(request.dt >= kMinTimeStep && request.dt <= kMaxTimeStep)) {
     throw Error(fmt::format("grasp validation: time step {} s is outside [{}, {}] s", request.dt,
@@ -238,6 +245,10 @@ class Pull {
   bool ended() const { return ended_; }
   bool letGo() const { return ended_ && !result_.held; }
 
+  // Statics shows the grasp bears this pull: it ends held once its first staticsProbeSeconds
+  // have kept the object within the probe's share of the let-go limits.
+  void trustStatics() { statics_ = true; }
+
   // Takes up to `steps` steps of the pull; true once it has ended: let go, at rest, run to its
   // end, or stopped by a DynamicsError (result().failure).
   bool advance(int steps) {
@@ -288,6 +299,14 @@ class Pull {
     result_.seconds = world_.time() - start_;
     // Once it has let go, the rest of the run cannot bring it back within the limits.
     if (result_.slip > request_.maxSlip || result_.turn > request_.maxTurn) return false;
+    if (statics_ && result_.seconds >= request_.staticsProbeSeconds - 1e-9) {
+      const double share = request_.staticsProbeShare;
+      if (result_.slip <= share * request_.maxSlip && result_.turn <= share * request_.maxTurn) {
+        result_.byStatics = true;
+        return false;
+      }
+      statics_ = false;  // it moved: the simulation decides, as without statics
+    }
     if (!request_.stopAtRest || !rest_.atRest(world_, robot_)) return true;
     // At rest: what is left of the run could move it by restSpeed times the time left at most.
     const double left = request_.seconds - result_.seconds;
@@ -304,6 +323,7 @@ class Pull {
   double start_, end_;
   DirectionResult& result_;
   bool ended_ = false;
+  bool statics_ = false;
   double slipRate_ = 0.0, turnRate_ = 0.0;  // over the last advance(), per second
 };
 
@@ -350,14 +370,22 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
                            -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
   World base = validationWorld(world, robot, object);
   std::string settle_failure;
+  // Statics needs the squeeze at rest and its contacts' forces over the last two steps.
+  bool squeezed_at_rest = false;
+  std::vector<ContactImpulse> before_last_impulses, last_impulses;
   try {
     base.setGravity(Vector3::Zero());
     RestWatch rest(request, base.bodies()[0].model->maxRadius);
     FreeObjectWatch free_object(request, base.bodies()[0].model->maxRadius);
     const auto settled = [&](const World& w, const StepReport&) {
+      if (request.statics) {
+        before_last_impulses = std::move(last_impulses);
+        last_impulses = w.lastImpulses();
+      }
       if (w.time() < kMinSettleSeconds) return true;
       const bool squeezed = rest.atRest(w, robot);  // both watches see every step
       const bool missed = free_object.atRest(w, robot);
+      squeezed_at_rest = squeezed;
       return !(squeezed || missed);
     };
     const double start = base.time();
@@ -366,6 +394,9 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
   } catch (const DynamicsError& error) {
     settle_failure = error.what();
   }
+  std::optional<HeldContacts> held_contacts;
+  if (request.statics && squeezed_at_rest && settle_failure.empty())
+    held_contacts = heldContacts(base, 0, before_last_impulses, last_impulses, request.dt);
   std::array<std::optional<Pull>, 6> pulls;
   for (int k = 0; k < 6; ++k) {
     DirectionResult& direction = result.directions[k];
@@ -378,6 +409,11 @@ ValidationResult validateGrasp(const World& world, int robot, int object,
       continue;
     }
     pulls[k].emplace(base, robot, axes[k], request, direction);
+    if (held_contacts &&
+        staticHold(base, 0, *held_contacts,
+                   {.acceleration = request.gravity * axes[k], .margins = request.staticsMargins})
+            .holds)
+      pulls[k]->trustStatics();
   }
   if (request.allDirections) {
     for (auto& pull : pulls)

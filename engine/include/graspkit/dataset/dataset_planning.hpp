@@ -27,6 +27,10 @@ struct DatasetRequest {
   // (ValidationRequest::allDirections), the others stored as not tried. The held label is the
   // same; most planned grasps fail, and the pulls they hold were most of validation's time.
   bool validateAllDirections = false;
+  // True: a direction statics shows held ends after a short probe instead of running until it
+  // rests (ValidationRequest::statics): the same labels, measured on planned grasps
+  // (docs/dynamics.md), in less time. Its slip, turn and seconds are the probe's.
+  bool validateStatics = false;
   std::uint64_t seed = 1;
 };
 

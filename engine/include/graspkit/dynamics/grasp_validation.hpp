@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "graspkit/dynamics/dynamics.hpp"
+#include "graspkit/dynamics/static_hold.hpp"
 #include "graspkit/math/transform.hpp"
 
 namespace graspkit {
@@ -47,16 +48,28 @@ struct ValidationRequest {
   // direction tried and let go. Datasets, where most planned grasps fail, take this
   // (dataset_planning.hpp).
   bool allDirections = true;
+  // True: after the squeeze settles at rest, a direction whose pull statics shows the grasp can
+  // bear (dynamics/static_hold.hpp: an equilibrium with the DOFs' forces unchanged, within
+  // staticsMargins) is labelled held without simulating it; the others are simulated as ever.
+  // Statics only ever says held, so a grasp it cannot judge costs what it did.
+  bool statics = false;
+  StaticHoldMargins staticsMargins;
+  // A direction statics shows held is simulated this long all the same (a probe: an edge or a
+  // corner the squeeze pinches can turn out of its equilibrium at once), and labelled held
+  // there if the object stayed within this share of maxSlip and maxTurn; else it runs on as any.
+  double staticsProbeSeconds = 0.025;
+  double staticsProbeShare = 0.02;
 };
 
 struct DirectionResult {
   Vector3 direction = Vector3::Zero();  // unit, world frame
   bool held = false;
-  double slip = 0.0;     // mm: the largest displacement from the palm seen in the direction's run
-  double turn = 0.0;     // rad: the largest rotation relative to the palm
-  double seconds = 0.0;  // simulated: less than asked when it ended at rest or let go
-  std::string failure;   // a DynamicsError's message, when the simulation itself failed
-  bool tried = true;     // false: another direction let go first, and allDirections was false
+  double slip = 0.0;       // mm: the largest displacement from the palm seen in the direction's run
+  double turn = 0.0;       // rad: the largest rotation relative to the palm
+  double seconds = 0.0;    // simulated: less than asked when it ended at rest or let go
+  std::string failure;     // a DynamicsError's message, when the simulation itself failed
+  bool tried = true;       // false: another direction let go first, and allDirections was false
+  bool byStatics = false;  // held by statics (ValidationRequest::statics) after its probe
 };
 
 struct ValidationResult {

@@ -42,12 +42,16 @@ struct WorldRobot {
 
 // A contact impulse of the last time step, kept so that the next step's solver starts from it
 // (a warm start): the pair, the contact point in body1's frame, and the impulse on body1 in the
-// world frame (g*mm/s).
+// world frame (g*mm/s). The contact's normal (world frame, from body2 towards body1: the way a
+// push moves body1) and the friction coefficient the step used let a statics check
+// (dynamics/static_hold.hpp) ask what else these contacts could carry.
 struct ContactImpulse {
   BodyRef body1;
   BodyRef body2;
   Vector3 localPoint = Vector3::Zero();
   Vector3 impulse = Vector3::Zero();
+  Vector3 normal = Vector3::UnitZ();
+  double mu = 0.0;
 };
 
 class World {
