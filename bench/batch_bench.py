@@ -2,7 +2,7 @@
 process, `--jobs J` and `mpirun -np R`, side by side on the same generated objects.
 
     python3 bench/batch_bench.py [--objects N] [--object-seed S] [--grasps G] [--steps STEPS]
-                                 [--no-validate] [--jobs J] [--ranks R] [--hand ROBOT.xml]
+                                 [--no-validate] [--statics] [--jobs J] [--ranks R] [--hand ROBOT.xml]
                                  [--repeats K] [--graspkit PROGRAM]
 
 Generates N objects (`graspkit objects --generate N --seed S`), then runs `graspkit batch` on
@@ -22,7 +22,8 @@ same datasets and manifest, byte for byte, which is checked.
 
 The issue's figures were taken with `--objects 10 --object-seed 1` (24 held of 100 grasps, about
 200 held per core-hour) and `--objects 6 --object-seed 11` (10 held of 60, 91 per CPU-hour).
-`--graspkit` runs another build (e.g. one of an older commit) for a before/after pair.
+`--graspkit` runs another build (e.g. one of an older commit) for a before/after pair;
+`--statics` validates with `--validate-statics` (statics first, docs/dynamics.md).
 """
 
 import argparse
@@ -77,6 +78,7 @@ def main():
     parser.add_argument("--grasps", type=int, default=10)
     parser.add_argument("--steps", type=int, default=40000)
     parser.add_argument("--no-validate", action="store_true")
+    parser.add_argument("--statics", action="store_true")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--ranks", type=int, default=2)
     parser.add_argument("--hand", default=str(BARRETT))
@@ -95,6 +97,8 @@ def main():
                  "--grasps", str(args.grasps), "--steps", str(args.steps)]
         if not args.no_validate:
             batch.append("--validate")
+            if args.statics:
+                batch.append("--validate-statics")
         ways = [("1 process", [], ["--jobs", "1"]),
                 (f"{args.jobs} jobs", [], ["--jobs", str(args.jobs)])]
         if mpirun:
@@ -116,7 +120,9 @@ def main():
                 shutil.rmtree(out)
         print(f"{args.objects} objects (seed {args.object_seed}), hand "
               f"{pathlib.Path(args.hand).name}, {args.grasps} grasps and {args.steps} steps each"
-              f"{'' if args.no_validate else ', validated'}; the same files from every run")
+              f"{'' if args.no_validate else ', validated'}"
+              f"{', statics first' if args.statics and not args.no_validate else ''}; the same "
+              f"files from every run")
         print(f"{'':14} {'grasps':>6} {'closure':>7} {'held':>5} {'CPU s':>8} {'wall s':>8} "
               f"{'held/core-hour':>15} {'objects/hour':>13}")
         for name, runs in results.items():

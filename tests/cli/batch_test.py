@@ -355,6 +355,35 @@ for name in ("object_0000_box", "object_0001_cylinder"):
                     fail(f"{name} grasp {i} direction {k}: ran {seconds[i][k]} s of 0.25")
 if not stopped_early:
     fail("no grasp left a direction untried: the stop at the first let go was not tried")
+
+# --validate-statics: a direction statics holds ends after its 0.025 s probe (one step past it at
+# most) with the object within 2 % of the let-go limits; every other direction is simulated as
+# without it, so it gets the same figures; and the labels are the simulation's on these grasps.
+# The manifest records the setting.
+statics = WORK / "validated_statics"
+validated_batch(statics, "--validate-all-directions", "--validate-statics")
+by_statics = 0
+for name in ("object_0000_box", "object_0001_cylinder"):
+    with h5py.File(statics / "grasps" / f"{name}.h5", "r") as f, \
+            h5py.File(every / "grasps" / f"{name}.h5", "r") as a:
+        if a["grasps/qualities/held"][()].tolist() != f["grasps/qualities/held"][()].tolist():
+            fail(f"{name}: labels {f['grasps/qualities/held'][()]} with statics, "
+                 f"{a['grasps/qualities/held'][()]} simulated")
+        seconds = f["grasps/validation/seconds"][()]
+        probed = (seconds < 0.025 + 0.0025 + 1e-9) & (seconds < a["grasps/validation/seconds"][()])
+        by_statics += int(probed.sum())
+        for key in ("held", "slip", "turn", "seconds", "failed"):
+            mine, theirs = f[f"grasps/validation/{key}"][()], a[f"grasps/validation/{key}"][()]
+            if (mine[~probed] != theirs[~probed]).any():
+                fail(f"{name}: validation/{key} {mine} with statics where simulated it is {theirs}")
+        if (f["grasps/validation/held"][()][probed] != 1).any() or \
+                (f["grasps/validation/slip"][()][probed] > 0.1 + 1e-12).any():
+            fail(f"{name}: a probed direction let go or slipped over 0.1 mm: "
+                 f"{f['grasps/validation/slip'][()]}")
+if not by_statics:
+    fail("statics held no direction of these grasps: --validate-statics was not tried")
+if not json.loads((statics / "manifest.json").read_text())["settings"].get("validate_statics"):
+    fail("the manifest does not record --validate-statics")
 # graspkit.load_dataset in Lua against h5py, on one file.
 name = "object_0001_cylinder"
 script = WORK / "read_dataset.lua"

@@ -68,9 +68,9 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
   cmd->add_option("--threads", options.threads, "Grasps validated at once (default: every core)")
       ->check(CLI::Range(1, 4096));
   cmd->add_flag("--statics", options.statics,
-                "A direction that statics shows the grasp bears with margins (twice the weight, "
-                "disturbing wrenches) is held after a 0.025 s probe instead of a run to rest: "
-                "faster, the same labels on planned grasps (docs/dynamics.md)");
+                "A direction that statics shows the grasp bears with margins (twice the weight) is "
+                "held after a 0.025 s probe instead of a run to rest: faster, the same labels on "
+                "planned grasps (docs/dynamics.md)");
   cmd->add_flag("--json", options.json, "Print one JSON object");
 }
 

@@ -121,14 +121,18 @@ TEST(StaticHold, TheLoadFactorScalesThePull) {
   EXPECT_FALSE(holds(s, Vector3(0, 0, 0.55 * limit), half_friction));
 }
 
-// A disturbing moment about x, the axis between the pads, is carried by friction over the pads'
-// area; the pull's moment arm, if any, adds to it. The box is held on its whole pads, so a
-// moment of a quarter of its weight times its radius is no trouble at a small pull.
-TEST(StaticHold, PadsResistTheDisturbingWrenches) {
+// Disturbing wrenches on top of a pull along the pads: the pads carry a quarter of the weight
+// (and a moment of that times the box's radius) about every axis at the box's own weight, but a
+// disturbing force along the pads adds to the pull, so near the friction limit it tips the
+// balance: 0.8 of the limit plus a quarter of it is past the limit.
+TEST(StaticHold, DisturbingWrenchesAddToThePull) {
   const SettledSqueeze s = settledSqueeze();
   StaticHoldMargins disturbed = kExact;
   disturbed.disturbance = 0.25;
   EXPECT_TRUE(holds(s, Vector3(0, 0, -kStandardGravity), disturbed));
+  const double limit = mu() * s.squeeze / s.mass;
+  EXPECT_TRUE(holds(s, Vector3(0, 0, -0.75 * limit)));
+  EXPECT_FALSE(holds(s, Vector3(0, 0, -0.85 * limit), disturbed));
 }
 
 TEST(StaticHold, ContactsBetweenOtherBodiesLeaveItUndecided) {
