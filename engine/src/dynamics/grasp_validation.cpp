@@ -300,8 +300,14 @@ class Pull {
     // Once it has let go, the rest of the run cannot bring it back within the limits.
     if (result_.slip > request_.maxSlip || result_.turn > request_.maxTurn) return false;
     if (statics_ && result_.seconds >= request_.staticsProbeSeconds - 1e-9) {
+      // Within the probe's share of the limits, and not moving fast enough to reach the limits
+      // within what is left of the run at its present speed.
       const double share = request_.staticsProbeShare;
-      if (result_.slip <= share * request_.maxSlip && result_.turn <= share * request_.maxTurn) {
+      const double left = request_.seconds - result_.seconds;
+      const auto& v = world_.bodies()[0].state.v;
+      if (result_.slip <= share * request_.maxSlip && result_.turn <= share * request_.maxTurn &&
+          result_.slip + v.head<3>().norm() * left <= request_.maxSlip &&
+          result_.turn + v.tail<3>().norm() * left <= request_.maxTurn) {
         result_.byStatics = true;
         return false;
       }
