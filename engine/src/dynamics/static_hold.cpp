@@ -25,8 +25,9 @@ constexpr double kNearLimit = 1e-3;
 // an equilibrium is taken to exist: far above rounding, far below any force that matters.
 constexpr double kEquilibriumResidual = 1e-7;
 
+// Adds the contact to `out` (its impulse times `per_second`, a force) when it involves the object.
 void addContact(const World& world, const BodyRef& object, const ContactImpulse& impulse,
-                double weight, HeldContacts& out) {
+                double per_second, HeldContacts& out) {
   const bool first = impulse.body1 == object;
   if (!first && !(impulse.body2 == object)) {
     out.betweenOthers = true;
@@ -38,7 +39,7 @@ void addContact(const World& world, const BodyRef& object, const ContactImpulse&
   contact.point = bodyPose(world, impulse.body1) * impulse.localPoint;
   contact.normal = sign * impulse.normal;
   contact.mu = impulse.mu;
-  contact.force = sign * weight * impulse.impulse;
+  contact.force = sign * per_second * impulse.impulse;
   out.onObject.push_back(contact);
 }
 

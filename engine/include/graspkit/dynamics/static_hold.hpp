@@ -42,8 +42,8 @@ struct HeldContact {
 // The object's contacts from the impulses of the last two steps of length dt (World::
 // lastImpulses after each): each contact counted at half its impulse per step, so that a rest
 // which alternates between a step that pushes contacts out and one that does not is seen at its
-// mean. Contacts between other bodies are returned with `other` set to their body1 and
-// `betweenOthers` true, so that the check can refuse them.
+// mean. A contact between other bodies is not returned; it sets `betweenOthers`, so that the
+// check can refuse the grasp (it would pass force from one DOF to another).
 struct HeldContacts {
   std::vector<HeldContact> onObject;
   bool betweenOthers = false;  // some contact does not involve the object (a finger on a finger)
