@@ -8,7 +8,10 @@
 //
 //   validation_statics_bench HAND OBJECTS_FOLDER [GRASPS_PER_OBJECT] [STEPS] [THREADS]
 //
-// OBJECTS_FOLDER holds the objects.txt that graspkit objects writes.
+// OBJECTS_FOLDER holds the objects.txt that graspkit objects writes. Environment:
+//   S_CONFIGS="load,disturbance,share,least;..."  margins to compare (default: the defaults)
+//   S_LABELS_ONLY=1  agreement only, without the timed dataset-mode runs
+//   S_VERBOSE=1      each grasp's CPU time, settle and per-direction seconds and failures
 
 #include <chrono>
 #include <cstdio>
