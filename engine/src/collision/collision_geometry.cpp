@@ -18,6 +18,7 @@
 #include <fcl/narrowphase/distance.h>
 #include <fmt/format.h>
 
+#include "collision/surface_area_splitter.hpp"
 #include "graspkit/base/error.hpp"
 
 namespace graspkit {
@@ -45,6 +46,9 @@ std::shared_ptr<const CollisionGeometry> build(const TriangleMesh& mesh) {
   if (triangles.empty()) return nullptr;
 
   auto bvh = std::make_shared<Bvh>();
+  // FCL cuts each node's longest axis at the triangles' mean centre; the surface-area rule's
+  // trees cost about half as much to descend where a finger rests on the mug (collision_bench).
+  bvh->bv_splitter = std::make_shared<collision::SurfaceAreaSplitter>();
   bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertex_count));
   bvh->addSubModel(mesh.vertices, triangles);
   bvh->endModel();

@@ -1,8 +1,8 @@
 #pragma once
 // The collision geometry of one mesh (internal to the collision module): the FCL
-// bounding-volume hierarchy, the mesh's box in its body frame, for a cheap world-box test
-// before any FCL call, and its convex hull, which proves most near pairs apart faster than the
-// hierarchy can.
+// bounding-volume hierarchy (split by the surface-area rule, surface_area_splitter.hpp), the mesh's
+// box in its body frame, for a cheap world-box test before any FCL call, and its convex hull, which
+// proves most near pairs apart faster than the hierarchy can.
 
 #include <memory>
 #include <optional>
