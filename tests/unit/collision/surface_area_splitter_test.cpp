@@ -1,6 +1,7 @@
 // The surface-area split rule for FCL's hierarchy builder. The hierarchy it builds must be a
 // hierarchy (every triangle in exactly one leaf, every node's volume around its triangles), must
-// cut where the heuristic says (two clusters of triangles are split between them, a closed form),
+// cut where the heuristic says (two clusters of triangles are split between them, a closed form,
+// whether the node box's axes or only the mesh frame's run across the gap),
 // and must give FCL's answers: collide and distance on random poses of two meshes against the
 // same meshes in hierarchies of FCL's own rule (a second method).
 
@@ -109,6 +110,32 @@ TEST(SurfaceAreaSplitter, CutsBetweenClusters) {
   expectHierarchy(*tree, soup);
   const fcl::BVNode<BoundingVolume>& root = tree->getBV(0);
   ASSERT_FALSE(root.isLeaf());
+  std::set<int> sizes;
+  for (int child : {root.leftChild(), root.rightChild()})
+    sizes.insert(tree->getBV(child).num_primitives);
+  EXPECT_EQ(sizes, (std::set<int>{10, 40}));
+}
+
+// The same two rows, both starting at x = 0: the root box's axes now follow the spread of all
+// the triangles and run obliquely across the gap, where no cut separates the rows cheaply. The
+// mesh frame's y still does.
+TEST(SurfaceAreaSplitter, CutsBetweenClustersAcrossAnObliqueBox) {
+  Soup soup;
+  auto add = [&](const Vector3& at) {
+    const int base = static_cast<int>(soup.vertices.size());
+    soup.vertices.push_back(at);
+    soup.vertices.push_back(at + Vector3(1, 0, 0));
+    soup.vertices.push_back(at + Vector3(0, 1, 0.5));
+    soup.triangles.emplace_back(base, base + 1, base + 2);
+  };
+  for (int i = 0; i < 40; ++i) add({i * 10.0, 0.0, 0.0});
+  for (int i = 0; i < 10; ++i) add({i * 2.0, 100.0, 0.0});
+  const auto tree = build(soup, true);
+  expectHierarchy(*tree, soup);
+  const fcl::BVNode<BoundingVolume>& root = tree->getBV(0);
+  ASSERT_FALSE(root.isLeaf());
+  EXPECT_LT(std::abs(root.bv.obb.axis.col(0).dot(Vector3::UnitY())), 0.99);  // oblique
+  EXPECT_GT(std::abs(root.bv.obb.axis.col(0).dot(Vector3::UnitY())), 0.01);
   std::set<int> sizes;
   for (int child : {root.leftChild(), root.rightChild()})
     sizes.insert(tree->getBV(child).num_primitives);
