@@ -17,7 +17,9 @@ namespace {
 
 // The hand (robot 0) 300 mm above the object (body 0) at the origin.
 std::shared_ptr<World> handOverObject(const DatasetRequest& request) {
-  auto world = std::make_shared<World>(loadAnyFile(request.hand, request.load));
+  auto world = request.loadedHand
+                   ? std::make_shared<World>(request.loadedHand->clone())
+                   : std::make_shared<World>(loadAnyFile(request.hand, request.load));
   if (world->robotCount() != 1 || !world->bodies().empty())
     throw Error(SourceLocation{request.hand.string()}, "the hand must be a robot file");
   Body object;

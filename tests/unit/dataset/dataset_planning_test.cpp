@@ -1,12 +1,14 @@
 // A planned dataset replays: every grasp saved to a dataset file and read back, put into a world
 // (hand closed as saved, breakaway states included), measured again, gives the epsilon, volume,
-// force closure and contact count the dataset holds; the same request gives the same dataset.
+// force closure and contact count the dataset holds; the same request gives the same dataset,
+// whether it loads the hand or is handed one loaded once for many objects.
 
 #include <gtest/gtest.h>
 
 #include "graspkit/dataset/dataset_planning.hpp"
 #include "graspkit/grasp/grasp.hpp"
 #include "graspkit/io/graspit/body_file.hpp"
+#include "graspkit/io/graspit/world_file.hpp"
 #include "graspkit/model/object_generator.hpp"
 #include "test_paths.hpp"
 
@@ -64,6 +66,28 @@ TEST(DatasetPlanning, TheSameRequestGivesTheSameDataset) {
     EXPECT_EQ(a.grasps[i].closedDofs, b.grasps[i].closedDofs);
     EXPECT_EQ(a.grasps[i].epsilon, b.grasps[i].epsilon);
   }
+}
+
+// graspkit batch loads the hand once and hands every object's request the loaded world: the
+// datasets must be those of requests that load it themselves, and the shared world untouched.
+TEST(DatasetPlanning, AHandLoadedOnceGivesTheDatasetOfOneLoadedPerRequest) {
+  const DatasetRequest loading = cylinderForTheBh8();
+  DatasetRequest shared = loading;
+  shared.loadedHand = std::make_shared<const World>(loadAnyFile(loading.hand, loading.load));
+  const GraspDataset a = planGraspDataset(loading);
+  const GraspDataset b = planGraspDataset(shared);
+  const GraspDataset c = planGraspDataset(shared);
+  ASSERT_EQ(a.grasps.size(), b.grasps.size());
+  ASSERT_EQ(a.grasps.size(), c.grasps.size());
+  for (std::size_t i = 0; i < a.grasps.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(a.grasps[i].grasp.matrix(), b.grasps[i].grasp.matrix());
+    EXPECT_EQ(a.grasps[i].closedDofs, b.grasps[i].closedDofs);
+    EXPECT_EQ(a.grasps[i].epsilon, b.grasps[i].epsilon);
+    EXPECT_EQ(b.grasps[i].grasp.matrix(), c.grasps[i].grasp.matrix());
+  }
+  EXPECT_TRUE(shared.loadedHand->bodies().empty());
+  EXPECT_TRUE(shared.loadedHand->robot(0).pose().isApprox(Transform::Identity(), 0.0));
 }
 
 }  // namespace

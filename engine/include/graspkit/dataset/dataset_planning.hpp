@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "graspkit/io/common/load_options.hpp"
@@ -18,6 +19,10 @@ struct DatasetRequest {
   std::filesystem::path hand;    // a robot file
   std::filesystem::path object;  // a body file
   LoadOptions load;
+  // `hand` as loadAnyFile(hand, load) gives it, loaded once for the requests of many objects
+  // (graspkit batch loads it before forking each object's process, whose collision hierarchies
+  // are then built once). Empty: `hand` is loaded for this request.
+  std::shared_ptr<const World> loadedHand;
   int grasps = 20;                    // the best list's size
   std::optional<std::int64_t> steps;  // the planner's budget: steps (reproducible) ...
   std::optional<double> seconds;      // ... or wall time
