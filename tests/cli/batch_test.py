@@ -309,6 +309,20 @@ def validated_batch(folder, *flags):
         fail(f"the validated batch {flags} failed ({run.returncode}): {run.stdout}{run.stderr}")
 
 
+
+
+def same_labels_and_figures(name, f, a, kept, how):
+    """The grasp labels of dataset f (validated `how`) are those of a (every direction simulated),
+    and so is each direction's figure where `kept`."""
+    mine_labels, their_labels = f["grasps/qualities/held"][()], a["grasps/qualities/held"][()]
+    if mine_labels.tolist() != their_labels.tolist():
+        fail(f"{name}: labels {mine_labels} {how}, {their_labels} with all six simulated")
+    for key in ("held", "slip", "turn", "seconds", "failed"):
+        mine, theirs = f[f"grasps/validation/{key}"][()], a[f"grasps/validation/{key}"][()]
+        if (mine[kept] != theirs[kept]).any():
+            fail(f"{name}: validation/{key} {mine} {how} where all six simulated gave {theirs}")
+
+
 validated = WORK / "validated"
 every = WORK / "validated_all"
 validated_batch(validated)
@@ -318,14 +332,8 @@ stopped_early = 0
 for name in ("object_0000_box", "object_0001_cylinder"):
     with h5py.File(validated / "grasps" / f"{name}.h5", "r") as f, \
             h5py.File(every / "grasps" / f"{name}.h5", "r") as a:
-        if a["grasps/qualities/held"][()].tolist() != f["grasps/qualities/held"][()].tolist():
-            fail(f"{name}: labels {f['grasps/qualities/held'][()]} stopping at the first let go, "
-                 f"{a['grasps/qualities/held'][()]} trying all six")
-        for key in ("held", "slip", "turn", "seconds", "failed"):
-            tried = f["grasps/validation/held"][()] != -1
-            mine, theirs = f[f"grasps/validation/{key}"][()], a[f"grasps/validation/{key}"][()]
-            if (mine[tried] != theirs[tried]).any():
-                fail(f"{name}: validation/{key} {mine} where all six gave {theirs}")
+        tried = f["grasps/validation/held"][()] != -1
+        same_labels_and_figures(name, f, a, tried, "stopping at the first let go")
         if (a["grasps/validation/held"][()] == -1).any():
             fail(f"{name}: --validate-all-directions left {a['grasps/validation/held'][()]}")
         for row, label in zip(f["grasps/validation/held"][()], f["grasps/qualities/held"][()]):
@@ -366,16 +374,10 @@ by_statics = 0
 for name in ("object_0000_box", "object_0001_cylinder"):
     with h5py.File(statics / "grasps" / f"{name}.h5", "r") as f, \
             h5py.File(every / "grasps" / f"{name}.h5", "r") as a:
-        if a["grasps/qualities/held"][()].tolist() != f["grasps/qualities/held"][()].tolist():
-            fail(f"{name}: labels {f['grasps/qualities/held'][()]} with statics, "
-                 f"{a['grasps/qualities/held'][()]} simulated")
         seconds = f["grasps/validation/seconds"][()]
         probed = (seconds < 0.025 + 0.0025 + 1e-9) & (seconds < a["grasps/validation/seconds"][()])
         by_statics += int(probed.sum())
-        for key in ("held", "slip", "turn", "seconds", "failed"):
-            mine, theirs = f[f"grasps/validation/{key}"][()], a[f"grasps/validation/{key}"][()]
-            if (mine[~probed] != theirs[~probed]).any():
-                fail(f"{name}: validation/{key} {mine} with statics where simulated it is {theirs}")
+        same_labels_and_figures(name, f, a, ~probed, "with statics")
         if (f["grasps/validation/held"][()][probed] != 1).any() or \
                 (f["grasps/validation/slip"][()][probed] > 0.1 + 1e-12).any():
             fail(f"{name}: a probed direction let go or slipped over 0.1 mm: "
