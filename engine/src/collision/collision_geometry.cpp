@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include <fcl/narrowphase/distance.h>
 #include <fmt/format.h>
 
 #include "collision/surface_area_splitter.hpp"
+#include "geometry/hull_distance.hpp"
 #include "graspkit/base/error.hpp"
 
 namespace graspkit {
@@ -163,6 +163,7 @@ struct PairMemory {
   int failures = 0;
   int skip = 0;
   std::array<SeparationCertificate, 4> certificates;
+  Vector3 nearestDifference = Vector3::UnitX();  // GJK's last answer, where the next one starts
 };
 
 bool certified(const PairMemory& memory, const CollisionGeometry& a, const Transform& pose_a,
@@ -197,6 +198,19 @@ double separationAlong(PairMemory& memory, const Vector3& n, const CollisionGeom
   nearestCertificate(memory, pose_a, pose_b, true) = {pose_a, pose_b,
                                                       pose_a.linear().transpose() * n, gap};
   return gap;
+}
+
+// The world axis from a's hull to b's through their nearest points, by GJK started from the
+// pair's last answer (nearby placements need a few iterations, not a dozen); none when they
+// overlap.
+std::optional<Vector3> nearestAxis(PairMemory& memory, const CollisionGeometry& a,
+                                   const Transform& pose_a, const CollisionGeometry& b,
+                                   const Transform& pose_b) {
+  const auto nearest = geometry::nearestDifference(*a.hull, *b.hull, pose_a.inverse() * pose_b,
+                                                   memory.nearestDifference);
+  if (!nearest) return std::nullopt;
+  memory.nearestDifference = *nearest;
+  return (pose_a.linear() * -*nearest).normalized();  // b lies along minus a - b
 }
 
 PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
@@ -242,19 +256,13 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
       between.squaredNorm() > 0)
     if (const auto settled = settledAlong(between.normalized())) return *settled;
   // Hulls that overlapped lately (a fingertip whose hull reaches into the mug's) most likely
-  // still do: back off FCL's GJK for up to 16 queries, doubling with each failure.
+  // still do: back off GJK for up to 16 queries, doubling with each failure.
   if (memory.skip > 0) {
     --memory.skip;
     return false;
   }
-  fcl::DistanceRequestd request(true);
-  request.gjk_solver_type = fcl::GST_INDEP;
-  fcl::DistanceResultd result;
-  fcl::distance(a.hull->shape.get(), pose_a, b.hull->shape.get(), pose_b, request, result);
-  const Vector3 axis = result.nearest_points[1] - result.nearest_points[0];
-  const double gap = result.min_distance > 0 && axis.squaredNorm() > 0 && axis.allFinite()
-                         ? separationAlong(memory, axis.normalized(), a, pose_a, b, pose_b)
-                         : 0.0;
+  const std::optional<Vector3> axis = nearestAxis(memory, a, pose_a, b, pose_b);
+  const double gap = axis ? separationAlong(memory, *axis, a, pose_a, b, pose_b) : 0.0;
   if (gap > 0) {
     memory.failures = 0;
     return gap > by;

@@ -51,10 +51,10 @@ const CollisionGeometry* collisionGeometryOf(const std::shared_ptr<const Triangl
 
 // Whether the convex hulls of two placed meshes are certainly apart, so the meshes cannot touch.
 // The axis that separated the pair last, then the axis between the boxes' centres, then the one
-// FCL's GJK finds through the hulls' nearest points are tried in turn; the certificate is that
-// every hull vertex of one lies below, and every one of the other above, a plane across that axis,
-// checked vertex by vertex, so GJK's tolerance never decides a collision. False proves nothing.
-// With `by` > 0: whether they are certainly more than `by` mm apart.
+// GJK finds through the hulls' nearest points (geometry/hull_distance.hpp) are tried in turn; the
+// certificate is that every hull vertex of one lies below, and every one of the other above, a
+// plane across that axis, checked vertex by vertex, so GJK's tolerance never decides a collision.
+// False proves nothing. With `by` > 0: whether they are certainly more than `by` mm apart.
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
                 const Transform& pose_b, double by = 0.0);
 

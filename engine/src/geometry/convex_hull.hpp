@@ -14,7 +14,7 @@ namespace graspkit::geometry {
 
 struct ConvexHull {
   Eigen::Matrix3Xd vertices;  // body frame, one per column: some of the mesh's vertices, exactly
-  std::shared_ptr<const fcl::Convexd> shape;  // the same polytope for FCL's GJK
+  std::shared_ptr<const fcl::Convexd> shape;  // the same polytope, with its faces, as FCL's shape
 };
 
 // qhull's hull of the points; nullopt when it has no volume (a flat or degenerate mesh) or
