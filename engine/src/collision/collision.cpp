@@ -42,6 +42,7 @@ Placed place(const World& world, const BodyRef& ref) {
 // FCL collide with one contact and no contact data: the traversal stops at the first pair of
 // intersecting triangles. Most near pairs are proved apart by their hulls first.
 bool narrowCollide(const Placed& a, const Placed& b) {
+  if (rootVolumesApart(*a.geometry, a.pose, *b.geometry, b.pose)) return false;
   if (hullsApart(*a.geometry, a.pose, *b.geometry, b.pose)) return false;
   const fcl::CollisionRequestd request(1, false);
   fcl::CollisionResultd result;

@@ -227,14 +227,18 @@ PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
 
 }  // namespace
 
+bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
+                      const CollisionGeometry& b, const Transform& pose_b) {
+  const Transform b_in_a = pose_a.inverse(Eigen::Isometry) * pose_b;
+  return !fcl::overlap(b_in_a.linear(), b_in_a.translation(), a.bvh->getBV(0).bv,
+                       b.bvh->getBV(0).bv);
+}
+
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
                 const Transform& pose_b, double by) {
   if (!a.hull || !b.hull) return false;
   // Root bounding volumes apart: FCL's own traversal ends at once, no certificate is worth it.
-  const Transform relative = pose_a.inverse() * pose_b;
-  if (!fcl::overlap(relative.linear(), relative.translation(), a.bvh->getBV(0).bv,
-                    b.bvh->getBV(0).bv))
-    return false;
+  if (rootVolumesApart(a, pose_a, b, pose_b)) return false;
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
   if (certified(memory, a, pose_a, b, pose_b, by)) return true;

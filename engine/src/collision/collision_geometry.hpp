@@ -49,6 +49,12 @@ inline WorldBox worldBox(const CollisionGeometry& geometry, const Transform& pos
 // empty or flat mesh.
 const CollisionGeometry* collisionGeometryOf(const std::shared_ptr<const TriangleMesh>& mesh);
 
+// Whether the root bounding volumes of two placed meshes are apart: FCL's traversal would stop
+// there, and so can a query, before FCL is called at all (a hand's links, checked against each
+// other at every step, are mostly this far apart).
+bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
+                      const CollisionGeometry& b, const Transform& pose_b);
+
 // Whether the convex hulls of two placed meshes are certainly apart, so the meshes cannot touch.
 // The axis that separated the pair last, then the axis between the boxes' centres, then the one
 // GJK finds through the hulls' nearest points (geometry/hull_distance.hpp) are tried in turn; the
