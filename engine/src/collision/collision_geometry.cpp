@@ -119,8 +119,7 @@ namespace {
 // The largest extent of a placed hull along a world direction.
 double support(const geometry::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
   const Vector3 local = pose.linear().transpose() * direction;
-  return local.dot(hull.vertices.col(geometry::farthestVertex(hull, local))) +
-         direction.dot(pose.translation());
+  return (local.transpose() * hull.vertices).maxCoeff() + direction.dot(pose.translation());
 }
 
 // The width of the slab between a's hull and b's across world axis n (unit): how far below the

@@ -7,6 +7,13 @@
 namespace graspkit::geometry {
 namespace {
 
+// The vertex of a hull farthest along d.
+Vector3 supportOf(const Eigen::Matrix3Xd& vertices, const Vector3& d) {
+  Eigen::Index farthest = 0;
+  (d.transpose() * vertices).maxCoeff(&farthest);
+  return vertices.col(farthest);
+}
+
 // The points of A - B that GJK keeps: a point, a segment, a triangle or a tetrahedron.
 struct Simplex {
   std::array<Vector3, 4> w;
@@ -97,8 +104,8 @@ std::optional<Vector3> nearestDifference(const ConvexHull& a, const ConvexHull& 
   const Matrix3 rotation = b_in_a.linear();
   const Vector3 translation = b_in_a.translation();
   auto support = [&](const Vector3& d) -> Vector3 {
-    const Vector3 far_b = b.vertices.col(farthestVertex(b, rotation.transpose() * -d));
-    return a.vertices.col(farthestVertex(a, d)) - (rotation * far_b + translation);
+    return supportOf(a.vertices, d) -
+           (rotation * supportOf(b.vertices, rotation.transpose() * -d) + translation);
   };
   // Touching, to rounding: no axis separates them.
   constexpr double kTouching2 = 1e-20;
