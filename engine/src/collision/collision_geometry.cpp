@@ -237,8 +237,6 @@ bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
                 const Transform& pose_b, double by) {
   if (!a.hull || !b.hull) return false;
-  // Root bounding volumes apart: FCL's own traversal ends at once, no certificate is worth it.
-  if (rootVolumesApart(a, pose_a, b, pose_b)) return false;
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
   if (certified(memory, a, pose_a, b, pose_b, by)) return true;

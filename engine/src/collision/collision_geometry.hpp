@@ -61,6 +61,7 @@ bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
 // certificate is that every hull vertex of one lies below, and every one of the other above, a
 // plane across that axis, checked vertex by vertex, so GJK's tolerance never decides a collision.
 // False proves nothing. With `by` > 0: whether they are certainly more than `by` mm apart.
+// A collision query tests rootVolumesApart first: a certificate is not worth its memory there.
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
                 const Transform& pose_b, double by = 0.0);
 
