@@ -7,7 +7,6 @@
 #include <cmath>
 #include <random>
 
-#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
 
