@@ -44,6 +44,7 @@ LoadOptions LoadFlags::options() const {
   options.packagePaths = packagePaths;
   options.urdfPalm = palm;
   options.srdf = srdf;
+  options.mjcfMeshHulls = !mjcfExactMeshes;
   auto materialNamed = [](const std::string& option, const std::string& name) {
     const auto m = valueNamed<Material>(name);
     if (!m) throw Error(fmt::format("{}: '{}' is not one of GraspIt!'s materials", option, name));
@@ -92,6 +93,9 @@ void addLoadFlags(CLI::App& command, LoadFlags& flags) {
   command.add_option("--srdf", flags.srdf,
                      "URDF: an SRDF whose <disable_collisions> pairs are never checked (default: "
                      "the .srdf beside the URDF)");
+  command.add_flag("--mjcf-exact-meshes", flags.mjcfExactMeshes,
+                   "MJCF: mesh geoms collide as their every triangle (default: as their convex "
+                   "hulls, as in MuJoCo)");
   command
       .add_option("--close", flags.closing,
                   "DOF=+|-: the way DOF (0-based) closes the hand, towards its upper (+) or lower "

@@ -1,6 +1,7 @@
 #pragma once
 // The flags every command that loads files shares: --root, --generic-robots, --close, and for
-// URDF robots --package-path, --palm, --urdf-material, --link-material and --srdf.
+// URDF robots --package-path, --palm, --urdf-material, --link-material and --srdf, and for MJCF
+// hands --mjcf-exact-meshes.
 
 #include <filesystem>
 #include <string>
@@ -21,6 +22,7 @@ struct LoadFlags {
   std::vector<std::string> linkMaterials;  // LINK=MATERIAL
   std::vector<std::string> closing;        // DOF=+ or DOF=-
   std::filesystem::path srdf;              // URDF: <disable_collisions> pairs
+  bool mjcfExactMeshes = false;            // MJCF: collide meshes as they are, not their hulls
 
   // Throws graspkit::Error naming the option for an unknown material or a malformed pair.
   LoadOptions options() const;

@@ -1,5 +1,7 @@
 #include "geometry/convex_hull.hpp"
 
+#include <array>
+#include <cstdint>
 #include <unordered_map>
 
 extern "C" {
@@ -43,6 +45,30 @@ std::optional<ConvexHull> convexHull(const std::vector<Vector3>& points) {
   });
   if (failure) return std::nullopt;
   return hull;
+}
+
+std::optional<TriangleMesh> convexHullMesh(const std::vector<Vector3>& points) {
+  const auto hull = convexHull(points);
+  if (!hull) return std::nullopt;
+  TriangleMesh mesh;
+  mesh.vertices = hull->shape->getVertices();
+  // The mean of the hull's vertices is inside it (it has volume), so a facet faces out when its
+  // normal points away from there.
+  Vector3 inside = Vector3::Zero();
+  for (const Vector3& v : mesh.vertices) inside += v;
+  inside /= static_cast<double>(mesh.vertices.size());
+  const std::vector<int>& faces = hull->shape->getFaces();
+  for (std::size_t at = 0; at < faces.size(); at += 1 + static_cast<std::size_t>(faces[at])) {
+    if (faces[at] != 3) return std::nullopt;  // "Qt" triangulates; anything else is a surprise
+    std::array<std::uint32_t, 3> t = {static_cast<std::uint32_t>(faces[at + 1]),
+                                      static_cast<std::uint32_t>(faces[at + 2]),
+                                      static_cast<std::uint32_t>(faces[at + 3])};
+    const Vector3& p = mesh.vertices[t[0]];
+    const Vector3 normal = (mesh.vertices[t[1]] - p).cross(mesh.vertices[t[2]] - p);
+    if (normal.dot(p - inside) < 0) std::swap(t[1], t[2]);
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
 }
 
 }  // namespace graspkit::geometry

@@ -1,6 +1,7 @@
 #pragma once
-// The convex hull of a mesh's vertices (internal to the collision module), for certificates that
-// two meshes cannot touch: if their hulls are apart, so are they.
+// The convex hull of a set of points (internal to the engine): for certificates that two meshes
+// cannot touch (if their hulls are apart, so are they), for generated objects, and for MJCF mesh
+// geoms, which MuJoCo collides as their hulls.
 
 #include <memory>
 #include <optional>
@@ -20,5 +21,8 @@ struct ConvexHull {
 // qhull's hull of the points; nullopt when it has no volume (a flat or degenerate mesh) or
 // qhull fails.
 std::optional<ConvexHull> convexHull(const std::vector<Vector3>& points);
+
+// The same hull as a closed triangle mesh, every triangle facing out; nullopt as above.
+std::optional<TriangleMesh> convexHullMesh(const std::vector<Vector3>& points);
 
 }  // namespace graspkit::geometry

@@ -61,29 +61,6 @@ TriangleMesh superquadricMesh(const Vector3& a, double e1, double e2) {
   return mesh;
 }
 
-// qhull's hull of `points` as a closed mesh, each facet turned to face away from the inside.
-std::optional<TriangleMesh> hullMesh(const std::vector<Vector3>& points) {
-  const auto hull = geometry::convexHull(points);
-  if (!hull) return std::nullopt;
-  TriangleMesh mesh;
-  mesh.vertices = hull->shape->getVertices();
-  Vector3 inside = Vector3::Zero();
-  for (const Vector3& v : mesh.vertices) inside += v;
-  inside /= static_cast<double>(mesh.vertices.size());
-  const std::vector<int>& faces = hull->shape->getFaces();
-  for (std::size_t at = 0; at < faces.size(); at += 1 + static_cast<std::size_t>(faces[at])) {
-    if (faces[at] != 3) return std::nullopt;  // "Qt" triangulates; anything else is a surprise
-    std::array<std::uint32_t, 3> t = {static_cast<std::uint32_t>(faces[at + 1]),
-                                      static_cast<std::uint32_t>(faces[at + 2]),
-                                      static_cast<std::uint32_t>(faces[at + 3])};
-    const Vector3& p = mesh.vertices[t[0]];
-    const Vector3 normal = (mesh.vertices[t[1]] - p).cross(mesh.vertices[t[2]] - p);
-    if (normal.dot(p - inside) < 0) std::swap(t[1], t[2]);
-    mesh.triangles.push_back(t);
-  }
-  return mesh;
-}
-
 // Points on random rays of the ellipsoid with semi-axes `a`, between 0.6 and 1 of the way out;
 // their hull, stretched so that its extents are exactly 2a.
 TriangleMesh convexHullMesh(Random& random, const Vector3& a) {
@@ -95,7 +72,7 @@ TriangleMesh convexHullMesh(Random& random, const Vector3& a) {
       points.emplace_back(out * a.x() * r * std::cos(angle), out * a.y() * r * std::sin(angle),
                           out * a.z() * z);
     }
-    std::optional<TriangleMesh> mesh = hullMesh(points);
+    std::optional<TriangleMesh> mesh = geometry::convexHullMesh(points);
     if (!mesh) continue;  // flat or degenerate draws: draw again (the stream stays fixed)
     Eigen::AlignedBox3d box;
     for (const Vector3& v : mesh->vertices) box.extend(v);

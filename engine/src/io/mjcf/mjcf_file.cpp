@@ -30,6 +30,7 @@
 #include <optional>
 #include <set>
 
+#include "geometry/convex_hull.hpp"
 #include "geometry/primitive_meshes.hpp"
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/log.hpp"
@@ -608,6 +609,12 @@ class MjcfReader {
     }
     // Visual-only geoms (contype and conaffinity 0) never collide in MuJoCo: left out.
     if (contype == 0 && conaffinity == 0) return;
+    // MuJoCo collides a mesh geom as its convex hull, and hands are tuned to that: their
+    // collision meshes are often the visual ones, tens of thousands of triangles whose contact
+    // search dominated planning and simulation. A flat mesh has no hull and stays as it is.
+    if (type == "mesh" && options_.mjcfMeshHulls) {
+      if (auto hull = geometry::convexHullMesh(mesh.vertices)) mesh = std::move(*hull);
+    }
     appendMesh(bodies_[body].mesh, std::move(mesh), placed);
   }
 

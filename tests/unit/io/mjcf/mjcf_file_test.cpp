@@ -13,6 +13,8 @@
 #include <string>
 
 #include "graspkit/base/error.hpp"
+#include "graspkit/geometry/mass_properties.hpp"
+#include "graspkit/io/common/load_options.hpp"
 #include "graspkit/io/graspit/robot_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 #include "test_paths.hpp"
@@ -264,7 +266,6 @@ TEST(MjcfFile, BadFilesNameFileLineAndElement) {
     }
   }
 }
-
 }  // namespace
 }  // namespace graspkit
 
@@ -301,6 +302,73 @@ TEST(MjcfFile, ABodyCarryingTwoFingersMovesBoth) {
     expectPose(robot.linkPose(1, 0),
                arch * translation(-10, 0, 30) * rotation(Vector3::UnitY(), q[2]));
   }
+}
+
+// MuJoCo collides a mesh geom as its convex hull. An L-shaped prism (the L of 20 x 10 and
+// 10 x 20 mm rectangles, 10 mm thick: 4,000 mm^3) has as its hull the L with the triangle
+// between its arms filled in (500 mm^2 of outline: 5,000 mm^3), without the L's inner corner.
+// The link's mass still comes from the mesh itself (1 g/cm^3 by default: 4 g).
+TEST(MjcfFile, AMeshGeomCollidesAsItsConvexHullAsInMujoco) {
+  writeFile("l_prism.off", R"(OFF
+12 20 0
+0 0 0
+20 0 0
+20 10 0
+10 10 0
+10 30 0
+0 30 0
+0 0 10
+20 0 10
+20 10 10
+10 10 10
+10 30 10
+0 30 10
+3 0 2 1
+3 0 3 2
+3 0 5 3
+3 3 5 4
+3 6 7 8
+3 6 8 9
+3 6 9 11
+3 9 10 11
+3 0 1 7
+3 0 7 6
+3 1 2 8
+3 1 8 7
+3 2 3 9
+3 2 9 8
+3 3 4 10
+3 3 10 9
+3 4 5 11
+3 4 11 10
+3 5 0 6
+3 5 6 11
+)");
+  const fs::path file = writeFile("l_hand.xml", R"(<mujoco model="l_hand">
+  <asset><mesh name="l" file="l_prism.off" scale="0.001 0.001 0.001"/></asset>
+  <worldbody>
+    <body name="palm"><geom type="box" size="0.01 0.01 0.01"/>
+      <body name="finger" pos="0 0 0.05">
+        <joint name="bend" axis="0 1 0" range="0 1"/>
+        <geom type="mesh" mesh="l"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)");
+  const auto hulled = loadMjcfFile(file);
+  LoadOptions exact_options;
+  exact_options.mjcfMeshHulls = false;
+  const auto exact = loadMjcfFile(file, exact_options);
+  const BodyModel& hull = *hulled->chains[0].links[0].body;
+  const BodyModel& mesh = *exact->chains[0].links[0].body;
+  EXPECT_NEAR(computeMassProperties(*hull.mesh).volume, 5000.0, 1e-6);
+  EXPECT_NEAR(computeMassProperties(*mesh.mesh).volume, 4000.0, 1e-6);
+  EXPECT_EQ(mesh.mesh->triangleCount(), 20u);
+  for (const Vector3& v : hull.mesh->vertices)
+    EXPECT_FALSE(std::abs(v.x() - 10.0) < 1e-9 && std::abs(v.y() - 10.0) < 1e-9)
+        << "the L's inner corner is inside the hull: " << v.transpose();
+  EXPECT_NEAR(hull.mass, 4.0, 1e-9);
+  EXPECT_NEAR(mesh.mass, 4.0, 1e-9);
 }
 
 }  // namespace

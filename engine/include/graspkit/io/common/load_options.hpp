@@ -40,6 +40,9 @@ struct LoadOptions {
   // URDF and MJCF hands: infer each DOF's closing direction from the geometry (else every DOF
   // closes towards its upper limit, as before).
   bool inferClosingDirections = true;
+  // MJCF hands: each mesh geom collides as its convex hull, as in MuJoCo (mass and inertia still
+  // come from the mesh itself); false keeps every triangle of the mesh.
+  bool mjcfMeshHulls = true;
   // URDF: an SRDF whose <disable_collisions> pairs are never checked. Empty: the .srdf beside
   // the URDF (same stem), when there is one.
   std::filesystem::path srdf;
