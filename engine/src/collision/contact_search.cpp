@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "collision/contact_compaction.hpp"
 #include "collision/contact_neighbourhood.hpp"
+#include "collision/contact_search_stages.hpp"
 #include "collision/distinct_point_pairs.hpp"
 #include "collision/triangle_contact.hpp"
 #include "collision/working_memory.hpp"
@@ -77,12 +80,100 @@ struct FoundRun {
   std::size_t end;
 };
 
+// The second stage of a search in two stages (ContactRequest::firstStageThreshold): the first
+// stage's surviving contacts, as points on the query and on the target in the target's frame.
+// Every contact the second stage could add ranks after them (it is farther apart), so one that
+// lies within the duplicate distance of a survivor on both bodies is removed by it whatever
+// else is found: a triangle pair all of whose contacts would be is not searched.
+class SurvivorCover {
+ public:
+  SurvivorCover(double duplicate_distance, double threshold)
+      // Less a margin for the rounding of the frames the survivors passed through, and for the
+      // touching points moved onto each other (kTouchingTolerance).
+      : reach_(duplicate_distance - 1e-4), threshold_(threshold) {}
+
+  void add(const Vector3& on_query, const Vector3& on_target) {
+    survivors_.push_back({on_query, on_target});
+  }
+
+  // Every contact of the query triangle: its point on the triangle, and the target's within the
+  // threshold of the triangle.
+  bool coversQuery(const Triangle& query) const {
+    return covers(query, reach_, query, reach_ - threshold_);
+  }
+
+  bool coversPair(const Triangle& query, const Triangle& target) const {
+    return covers(query, reach_, target, reach_);
+  }
+
+ private:
+  static bool within(const Triangle& t, const Vector3& p, double r_sq) {
+    return (t.a - p).squaredNorm() <= r_sq && (t.b - p).squaredNorm() <= r_sq &&
+           (t.c - p).squaredNorm() <= r_sq;
+  }
+
+  // Some survivor's ball of radius rq holds `query`, and its ball of radius rt holds `target`
+  // (a ball holds a triangle when it holds its corners). The last one that did is tried first:
+  // triangles come in order over the surface.
+  bool covers(const Triangle& query, double rq, const Triangle& target, double rt) const {
+    if (rq <= 0.0 || rt <= 0.0) return false;
+    const double rq_sq = rq * rq, rt_sq = rt * rt;
+    const std::size_t n = survivors_.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = (last_ + k) % n;
+      if (within(query, survivors_[i].first, rq_sq) &&
+          within(target, survivors_[i].second, rt_sq)) {
+        last_ = i;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  std::vector<std::pair<Vector3, Vector3>> survivors_;
+  double reach_;
+  double threshold_;
+  mutable std::size_t last_ = 0;
+};
+
+// Which pairs of meshes to search in two stages. The second stage pays only where many raw
+// contacts crowd behind each survivor (dense meshes face to face); elsewhere the first stage is
+// a search made twice. Whether a pair was dense at its last search on this thread says: the
+// simulation searches the same pairs step after step. The contacts do not depend on it.
+class DenseMemory {
+ public:
+  using Key = std::pair<const void*, const void*>;  // the query's and the target's geometry
+  // Raw contacts that make a pair dense: over the whole threshold in one search (the 2F-85's
+  // fingers closed on each other gave 400,000; a finger on an object, hundreds to thousands),
+  // and within the first stage's.
+  static constexpr std::size_t kDenseOneStage = 20000;
+  static constexpr std::size_t kDenseFirstStage = 2000;
+
+  static bool dense(const Key& key) {
+    const auto found = pairs().find(key);
+    return found != pairs().end() && found->second;
+  }
+
+  static void remember(const Key& key, bool dense) {
+    auto& known = pairs();
+    if (known.size() > 4096) known.clear();  // geometry comes and goes; a hint is only a hint
+    known[key] = dense;
+  }
+
+ private:
+  static std::map<Key, bool>& pairs() {
+    thread_local std::map<Key, bool> known;
+    return known;
+  }
+};
+
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame. Returns whether some
 // triangle pairs cross.
 bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& query_to_target,
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
-                 std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs) {
+                 std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs,
+                 const SurvivorCover* cover = nullptr) {
   const TriangleMesh& query = query_surface.mesh();
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
@@ -124,6 +215,7 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
     Eigen::AlignedBox3d box(tq.a);
     box.extend(tq.b).extend(tq.c);
     if (!box.intersects(reach)) continue;
+    if (cover && cover->coversQuery(tq)) continue;
     const Ball ball = enclosingBall(tq);
     // The query triangle's plane, unit normal: a target triangle whose box lies wholly beyond
     // the threshold on one side of it can neither touch nor cross the query triangle.
@@ -156,6 +248,7 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
     runs.clear();
     for (unsigned t : candidates) {
       const Triangle tt = triangleOf(target_mesh, t, target_mesh.vertices);
+      if (cover && cover->coversPair(tq, tt)) continue;
       pairs.clear();
       if (!collision::triangleContacts(tq, tt, threshold_sq, pairs, touching_is_contact)) {
         intersecting = true;
@@ -361,6 +454,12 @@ bool surfacesWithin(const World& world, const BodyRef& body1, const BodyRef& bod
 
 ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,
                            const ContactRequest& request) {
+  return collision::findContactsInStages(world, body1, body2, request, std::nullopt);
+}
+
+ContactResult collision::findContactsInStages(const World& world, const BodyRef& body1,
+                                              const BodyRef& body2, const ContactRequest& request,
+                                              std::optional<bool> two_stages) {
   ContactResult result;
   const PairSearch search(world, body1, body2, request.threshold);
   if (!search.reachable) return result;
@@ -377,30 +476,73 @@ ContactResult findContacts(const World& world, const BodyRef& body1, const BodyR
   thread_local std::vector<RawContact> raw_memory;
   std::vector<RawContact>& raw = raw_memory;
   raw.clear();
-  result.interpenetrating = searchPairs(*search.query, search.query_to_target, *search.target,
-                                        request.threshold, request.touchingIsContact, raw);
   const Transform first_inverse = first_pose.inverse();
   const Transform second_inverse = second_pose.inverse();
-  for (RawContact& r : raw) {
-    r.onFirst = target_pose * r.onFirst;
-    r.onSecond = target_pose * r.onSecond;
-    r.intoFirst = target_pose.linear() * r.intoFirst;
-    // Touching points give no direction of their own (their gap is rounding): they take the
-    // face's normal, as points at distance 0 do.
-    if (request.touchingIsContact &&
-        r.distanceSq() < collision::kTouchingTolerance * collision::kTouchingTolerance)
-      r.onSecond = r.onFirst;
-    if (walk_second) {
-      std::swap(r.onFirst, r.onSecond);
-      r.intoFirst = -r.intoFirst;  // the face was the first body's, pointing out of it
+  // Raw contacts from the target's frame to the world, each body's point on its own side, and
+  // ranked.
+  const auto toWorld = [&](std::vector<RawContact>& contacts) {
+    for (RawContact& r : contacts) {
+      r.onFirst = target_pose * r.onFirst;
+      r.onSecond = target_pose * r.onSecond;
+      r.intoFirst = target_pose.linear() * r.intoFirst;
+      // Touching points give no direction of their own (their gap is rounding): they take the
+      // face's normal, as points at distance 0 do.
+      if (request.touchingIsContact &&
+          r.distanceSq() < collision::kTouchingTolerance * collision::kTouchingTolerance)
+        r.onSecond = r.onFirst;
+      if (walk_second) {
+        std::swap(r.onFirst, r.onSecond);
+        r.intoFirst = -r.intoFirst;  // the face was the first body's, pointing out of it
+      }
+      // GraspIt! ranks duplicates by the distance between the two points each expressed in its
+      // own body's frame (not a physical distance); its choice of survivors follows from that.
+      r.rank = request.graspitDuplicates
+                   ? (first_inverse * r.onFirst - second_inverse * r.onSecond).squaredNorm()
+                   : r.distanceSq();
     }
-    // GraspIt! ranks duplicates by the distance between the two points each expressed in its
-    // own body's frame (not a physical distance); its choice of survivors follows from that.
-    r.rank = request.graspitDuplicates
-                 ? (first_inverse * r.onFirst - second_inverse * r.onSecond).squaredNorm()
-                 : r.distanceSq();
+  };
+  const double first_stage = request.firstStageThreshold;
+  const bool may_stage =
+      !request.graspitDuplicates && first_stage > 0.0 && request.threshold > 2.0 * first_stage;
+  DenseMemory::Key key{search.query.get(), search.target.get()};
+  if (!may_stage || !two_stages.value_or(DenseMemory::dense(key))) {
+    result.interpenetrating = searchPairs(*search.query, search.query_to_target, *search.target,
+                                          request.threshold, request.touchingIsContact, raw);
+    if (may_stage) DenseMemory::remember(key, raw.size() >= DenseMemory::kDenseOneStage);
+    toWorld(raw);
+    collision::removeDuplicates(raw, request.duplicateDistance);
+  } else {
+    // Duplicates are removed closest first, so the contacts within the first stage's threshold
+    // meet each other before any farther one: their survivors are the first survivors of the
+    // whole search. Only contacts ranked surely below that threshold (not where the rounding of
+    // the frames could put one either side of it) are taken from the first stage.
+    result.interpenetrating = searchPairs(*search.query, search.query_to_target, *search.target,
+                                          first_stage, request.touchingIsContact, raw);
+    DenseMemory::remember(key, raw.size() >= DenseMemory::kDenseFirstStage);
+    toWorld(raw);
+    const double bound = first_stage * first_stage * (1.0 - 1e-6);
+    std::erase_if(raw, [&](const RawContact& r) { return !(r.rank <= bound); });
+    collision::removeDuplicates(raw, request.duplicateDistance);
+    SurvivorCover cover(request.duplicateDistance, request.threshold);
+    const Transform to_target = target_pose.inverse();
+    for (const RawContact& r : raw) {
+      const Vector3& on_query = walk_second ? r.onSecond : r.onFirst;
+      const Vector3& on_target = walk_second ? r.onFirst : r.onSecond;
+      cover.add(to_target * on_query, to_target * on_target);
+    }
+    thread_local std::vector<RawContact> more_memory;
+    std::vector<RawContact>& more = more_memory;
+    more.clear();
+    searchPairs(*search.query, search.query_to_target, *search.target, request.threshold,
+                request.touchingIsContact, more, SearchEnd::AllPairs, &cover);
+    toWorld(more);
+    std::erase_if(more, [&](const RawContact& r) { return r.rank <= bound; });
+    // The survivors first, in the order they survived, then the rest: the survivors stay and
+    // the rest meet them before each other, as in one search.
+    raw.insert(raw.end(), more.begin(), more.end());
+    collision::keepOrRelease(more);
+    collision::removeDuplicates(raw, request.duplicateDistance);
   }
-  collision::removeDuplicates(raw, request.duplicateDistance);
   if (request.compact) collision::compactContacts(raw);
   std::vector<SoftPatch> patches;
   if (request.softContacts && (first_model.isElastic() || second_model.isElastic()))

@@ -6,6 +6,8 @@
 #include "graspkit/collision/contact_search.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <string>
@@ -13,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "collision/contact_search_stages.hpp"
 #include "graspkit/base/error.hpp"
 #include "graspkit/collision/collision.hpp"
 #include "graspkit/collision/contact.hpp"
@@ -104,6 +107,94 @@ void expectPositions(const std::vector<Contact>& contacts, std::vector<Vector3> 
     ASSERT_NE(hit, expected.end()) << "unexpected contact at " << c.position1.transpose();
     expected.erase(hit);
   }
+}
+
+// A sheet of n x n squares over 20 x 20 mm, each split in two, its heights drawn up to `bumps`
+// mm; facing up (+z), or down.
+Body denseSheet(const std::string& name, int n, double bumps, bool facing_up,
+                std::mt19937& random) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  std::uniform_real_distribution<double> height(0.0, bumps);
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      mesh->vertices.emplace_back(-10.0 + 20.0 * i / n, -10.0 + 20.0 * j / n, height(random));
+  const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      std::array<std::uint32_t, 3> a = {at(i, j), at(i + 1, j), at(i + 1, j + 1)};
+      std::array<std::uint32_t, 3> b = {at(i, j), at(i + 1, j + 1), at(i, j + 1)};
+      if (!facing_up) {
+        std::swap(a[1], a[2]);
+        std::swap(b[1], b[2]);
+      }
+      mesh->triangles.push_back(a);
+      mesh->triangles.push_back(b);
+    }
+  }
+  auto model = std::make_shared<BodyModel>();
+  model->name = name;
+  model->mesh = mesh;
+  model->material = Material::Rubber;
+  Body body;
+  body.model = model;
+  body.kind = BodyKind::Graspable;
+  body.name = name;
+  return body;
+}
+
+// Two dense sheets face to face (a gripper's pads closed on each other): the search in two
+// stages gives the contacts of one search over the whole threshold, bit for bit and in the same
+// order, whether the sheets are bumpy or flat (ties between equally near pairs), touching,
+// apart or crossing, and whichever is walked.
+TEST(FindContacts, TwoStagesGiveTheContactsOfOneSearch) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0, with_contacts = 0, crossing = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    SCOPED_TRACE(trial);
+    const double bumps = trial % 4 == 0 ? 0.0 : 0.06;
+    World world;
+    Body lower = denseSheet("lower", trial % 2 ? 30 : 20, bumps, true, random);
+    Body upper = denseSheet("upper", trial % 3 ? 24 : 34, bumps, false, random);
+    Transform pose = Transform::Identity();
+    pose.translation() =
+        Vector3(3.0 * unit(random), 3.0 * unit(random), bumps + 0.1 + 0.15 * unit(random));
+    if (trial % 4 != 0) {
+      pose.rotate(Eigen::AngleAxisd(0.03 * unit(random), Vector3::UnitX()));
+      pose.rotate(Eigen::AngleAxisd(0.03 * unit(random), Vector3::UnitY()));
+      pose.rotate(Eigen::AngleAxisd(0.5 * unit(random), Vector3::UnitZ()));
+    }
+    upper.setPose(pose);
+    const BodyRef a = BodyRef::body(world.addBody(lower));
+    const BodyRef b = BodyRef::body(world.addBody(upper));
+    for (const double threshold : {0.45, 1.3, 2.0}) {
+      for (const bool touching : {false, true}) {
+        ContactRequest two_stages;
+        two_stages.threshold = threshold;
+        two_stages.graspitDuplicates = false;
+        two_stages.softContacts = false;
+        two_stages.compact = trial % 2 == 0;
+        two_stages.touchingIsContact = touching;
+        const ContactResult one =
+            collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/false);
+        const ContactResult two =
+            collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/true);
+        EXPECT_EQ(one.interpenetrating, two.interpenetrating);
+        ASSERT_EQ(one.contacts.size(), two.contacts.size()) << threshold;
+        for (std::size_t i = 0; i < one.contacts.size(); ++i) {
+          EXPECT_EQ(one.contacts[i].position1, two.contacts[i].position1) << i;
+          EXPECT_EQ(one.contacts[i].position2, two.contacts[i].position2) << i;
+          EXPECT_EQ(one.contacts[i].normal, two.contacts[i].normal) << i;
+        }
+        ++compared;
+        if (!one.contacts.empty()) ++with_contacts;
+        if (one.interpenetrating) ++crossing;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 16 * 3 * 2);
+  EXPECT_GT(with_contacts, compared / 2);  // the trials touch, mostly
+  EXPECT_GT(crossing, 0);                  // and some cross
 }
 
 TEST(FindContacts, FacingSquaresAPointOneApart) {

@@ -28,6 +28,11 @@ struct ContactRequest {
   // Surfaces that touch without crossing (a mug standing on a floor, its bottom in the floor's
   // plane) give contacts at distance 0; GraspIt! counts them as interpenetrating.
   bool touchingIsContact = false;
+  // With graspitDuplicates false, a threshold above twice this is searched in two stages: first
+  // within this, then only the triangle pairs that the first stage's survivors do not already
+  // make duplicates of. The contacts are the same, in the same order; two dense meshes face to
+  // face (a gripper's fingers closed on each other) are searched many times faster. 0: one stage.
+  double firstStageThreshold = kContactThreshold;  // mm
 };
 
 struct ContactResult {
