@@ -440,6 +440,36 @@ TEST(Dynamics, ABodyStandingExactlyOnAnotherRests) {
   EXPECT_LT(moved.z(), 0.1 + 1e-3);
 }
 
+// Contact margins cover what free motion can close, but an impulse can send a body farther: a
+// cube hit at 2 m/s by another of the same mass (no restitution) leaves at 1 m/s, 2.5 mm in one
+// step, towards a wall 1 mm away that was beyond the pair's margin when the step began. The step
+// must not pass it through the wall (the next step would stop on an interpenetration): the cubes
+// end at rest against the wall, each at the resting separation from the next, momentum gone.
+TEST(Dynamics, ACubeKnockedFasterThanItsMarginStopsAtTheWall) {
+  World world;
+  world.setGravity(Vector3::Zero());
+  Body wall = makeBody(test::box(Vector3(0, -100, -100), Vector3(20, 100, 100)), BodyKind::Obstacle,
+                       Material::Wood, 1000.0, "wall");
+  world.addBody(wall);
+  Body struck = cube();
+  struck.setPose(translation(-26.0, 0, 0));  // 1 mm from the wall
+  const int b = world.addBody(struck);
+  Body striker = cube();
+  striker.setPose(translation(-26.0 - 50.0 - kRestingSeparation, 0, 0));
+  striker.state.v << 2000, 0, 0, 0, 0, 0;
+  const int a = world.addBody(striker);
+  EXPECT_NO_THROW(simulate(world, {.seconds = 0.1}));
+  const double gap_b = -25.0 - world.bodies()[b].pose.translation().x();
+  const double gap_a =
+      world.bodies()[b].pose.translation().x() - world.bodies()[a].pose.translation().x() - 50.0;
+  EXPECT_GE(gap_b, 0.0);
+  EXPECT_LT(gap_b, kContactThreshold);
+  EXPECT_GE(gap_a, 0.0);
+  EXPECT_LT(gap_a, kContactThreshold);
+  EXPECT_LT(world.bodies()[a].state.v.head<3>().norm(), 1.0);
+  EXPECT_LT(world.bodies()[b].state.v.head<3>().norm(), 1.0);
+}
+
 TEST(Dynamics, InterpenetrationAtTheStartIsAnError) {
   World world;
   world.addBody(floorSlab());
