@@ -24,6 +24,50 @@
 namespace graspkit {
 namespace {
 
+// The triangles' closed parts (groups joined by shared vertices), each as its vertices.
+std::vector<std::vector<Vector3>> closedParts(const TriangleMesh& mesh,
+                                              const std::vector<fcl::Triangle>& triangles) {
+  std::vector<std::uint32_t> root(mesh.vertices.size());
+  for (std::uint32_t v = 0; v < root.size(); ++v) root[v] = v;
+  const auto find = [&](std::uint32_t v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  for (const fcl::Triangle& tri : triangles)
+    for (int k = 1; k < 3; ++k)
+      root[find(static_cast<std::uint32_t>(tri[k]))] = find(static_cast<std::uint32_t>(tri[0]));
+  std::unordered_map<std::uint32_t, std::size_t> index;  // a part's root: its place in `parts`
+  std::vector<std::vector<Vector3>> parts;
+  std::vector<char> seen(mesh.vertices.size(), 0);
+  for (const fcl::Triangle& tri : triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::uint32_t>(tri[k]);
+      if (seen[v]) continue;
+      seen[v] = 1;
+      const auto [it, added] = index.try_emplace(find(v), parts.size());
+      if (added) parts.emplace_back();
+      parts[it->second].push_back(mesh.vertices[v]);
+    }
+  return parts;
+}
+
+// The hulls of a mesh's closed parts, when it has 2 to kMaxHullParts of them and every one has
+// volume (a flat part, a decal, has no hull to prove anything with); none otherwise.
+std::vector<HullPart> hullParts(const TriangleMesh& mesh,
+                                const std::vector<fcl::Triangle>& triangles) {
+  const std::vector<std::vector<Vector3>> parts = closedParts(mesh, triangles);
+  if (parts.size() < 2 || parts.size() > static_cast<std::size_t>(kMaxHullParts)) return {};
+  std::vector<HullPart> hulls;
+  for (const std::vector<Vector3>& points : parts) {
+    std::optional<geometry::ConvexHull> hull = geometry::convexHull(points);
+    if (!hull) return {};
+    Eigen::AlignedBox3d box;
+    for (const Vector3& p : points) box.extend(p);
+    hulls.push_back({std::move(*hull), box.center(), 0.5 * box.sizes()});
+  }
+  return hulls;
+}
+
 std::shared_ptr<const CollisionGeometry> build(const TriangleMesh& mesh) {
   const std::size_t vertex_count = mesh.vertices.size();
   std::vector<fcl::Triangle> triangles;
@@ -67,6 +111,7 @@ std::shared_ptr<const CollisionGeometry> build(const TriangleMesh& mesh) {
   geometry->boxCenter = box.center();
   geometry->boxHalfSize = 0.5 * box.sizes();
   geometry->hull = geometry::convexHull(points);
+  if (geometry->hull) geometry->parts = hullParts(mesh, triangles);
   return geometry;
 }
 
@@ -116,6 +161,20 @@ Cache& cache() {
 
 namespace {
 
+// A hull and the box of the points it wraps: a whole mesh's or one of its parts'.
+struct Shape {
+  const geometry::ConvexHull& hull;
+  const Vector3& boxCenter;
+  const Vector3& boxHalfSize;
+};
+
+Shape wholeOf(const CollisionGeometry& g) {
+  return {*g.hull, g.boxCenter, g.boxHalfSize};
+}
+Shape partOf(const HullPart& part) {
+  return {part.hull, part.boxCenter, part.boxHalfSize};
+}
+
 // The largest extent of a placed hull along a world direction.
 double support(const geometry::ConvexHull& hull, const Transform& pose, const Vector3& direction) {
   const Vector3 local = pose.linear().transpose() * direction;
@@ -125,15 +184,15 @@ double support(const geometry::ConvexHull& hull, const Transform& pose, const Ve
 // The width of the slab between a's hull and b's across world axis n (unit): how far below the
 // lowest vertex of b's hull the highest of a's lies. Positive: the hulls are apart by at least
 // that much.
-double slabGap(const Vector3& n, const CollisionGeometry& a, const Transform& pose_a,
-               const CollisionGeometry& b, const Transform& pose_b) {
-  return -support(*b.hull, pose_b, -n) - support(*a.hull, pose_a, n);
+double slabGap(const Vector3& n, const Shape& a, const Transform& pose_a, const Shape& b,
+               const Transform& pose_b) {
+  return -support(b.hull, pose_b, -n) - support(a.hull, pose_a, n);
 }
 
 // How far any vertex of `geometry`'s hull can have moved between two poses of its body: the
 // hull lies in the sphere of its box (centre c, radius r), whose centre moved by |to c - from c|
 // and whose rim turned by at most ||R_to - R_from||_2 r = sqrt(3 - tr(R_from^T R_to)) r.
-double displacement(const CollisionGeometry& geometry, const Transform& from, const Transform& to) {
+double displacement(const Shape& geometry, const Transform& from, const Transform& to) {
   const Vector3& c = geometry.boxCenter;
   const double trace = (from.linear().array() * to.linear().array()).sum();
   const double turn = std::sqrt(std::max(0.0, 3.0 - trace));
@@ -166,8 +225,8 @@ struct PairMemory {
   Vector3 nearestDifference = Vector3::UnitX();  // GJK's last answer, where the next one starts
 };
 
-bool certified(const PairMemory& memory, const CollisionGeometry& a, const Transform& pose_a,
-               const CollisionGeometry& b, const Transform& pose_b, double by) {
+bool certified(const PairMemory& memory, const Shape& a, const Transform& pose_a, const Shape& b,
+               const Transform& pose_b, double by) {
   for (const SeparationCertificate& c : memory.certificates)
     if (c.gap > by && c.gap > displacement(a, c.pose_a, pose_a) +
                                   displacement(b, c.pose_b, pose_b) + by + kCertificateMargin)
@@ -190,9 +249,8 @@ SeparationCertificate& nearestCertificate(PairMemory& memory, const Transform& p
 
 // The certified gap across axis n (unit, world), less the margin; a positive one is remembered.
 // Not positive: n proves nothing.
-double separationAlong(PairMemory& memory, const Vector3& n, const CollisionGeometry& a,
-                       const Transform& pose_a, const CollisionGeometry& b,
-                       const Transform& pose_b) {
+double separationAlong(PairMemory& memory, const Vector3& n, const Shape& a,
+                       const Transform& pose_a, const Shape& b, const Transform& pose_b) {
   const double gap = slabGap(n, a, pose_a, b, pose_b) - kCertificateMargin;
   if (!(gap > 0)) return 0.0;
   nearestCertificate(memory, pose_a, pose_b, true) = {pose_a, pose_b,
@@ -203,18 +261,17 @@ double separationAlong(PairMemory& memory, const Vector3& n, const CollisionGeom
 // The world axis from a's hull to b's through their nearest points, by GJK started from the
 // pair's last answer (nearby placements need a few iterations, not a dozen); none when they
 // overlap.
-std::optional<Vector3> nearestAxis(PairMemory& memory, const CollisionGeometry& a,
-                                   const Transform& pose_a, const CollisionGeometry& b,
-                                   const Transform& pose_b) {
-  const auto nearest = geometry::nearestDifference(*a.hull, *b.hull, pose_a.inverse() * pose_b,
+std::optional<Vector3> nearestAxis(PairMemory& memory, const Shape& a, const Transform& pose_a,
+                                   const Shape& b, const Transform& pose_b) {
+  const auto nearest = geometry::nearestDifference(a.hull, b.hull, pose_a.inverse() * pose_b,
                                                    memory.nearestDifference);
   if (!nearest) return std::nullopt;
   memory.nearestDifference = *nearest;
   return (pose_a.linear() * -*nearest).normalized();  // b lies along minus a - b
 }
 
-PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
-  using Key = std::pair<const CollisionGeometry*, const CollisionGeometry*>;
+PairMemory& memoryOf(const Shape& a, const Shape& b) {
+  using Key = std::pair<const geometry::ConvexHull*, const geometry::ConvexHull*>;
   struct KeyHash {
     std::size_t operator()(const Key& k) const {
       return std::hash<const void*>()(k.first) * 31 ^ std::hash<const void*>()(k.second);
@@ -222,7 +279,7 @@ PairMemory& memoryOf(const CollisionGeometry& a, const CollisionGeometry& b) {
   };
   thread_local std::unordered_map<Key, PairMemory, KeyHash> memory;
   if (memory.size() > 4096) memory.clear();
-  return memory[{&a, &b}];
+  return memory[{&a.hull, &b.hull}];
 }
 
 }  // namespace
@@ -234,9 +291,12 @@ bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
                        b.bvh->getBV(0).bv);
 }
 
-bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
-                const Transform& pose_b, double by) {
-  if (!a.hull || !b.hull) return false;
+namespace {
+
+// Whether two placed hulls are certainly more than `by` apart (hullsApart, for one pair of
+// shapes).
+bool shapesApart(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                 double by) {
   PairMemory& memory = memoryOf(a, b);
   // A certificate from a nearby placement proves it without looking at a vertex.
   if (certified(memory, a, pose_a, b, pose_b, by)) return true;
@@ -273,6 +333,28 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   memory.skip = (1 << memory.failures) - 1;  // 1, 3, 7, 15, 31 queries... capped below
   memory.skip = std::min(memory.skip, 16);
   return false;
+}
+
+}  // namespace
+
+bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,
+                const Transform& pose_b, double by) {
+  if (!a.hull || !b.hull) return false;
+  if (shapesApart(wholeOf(a), pose_a, wholeOf(b), pose_b, by)) return true;
+  if (a.parts.empty() && b.parts.empty()) return false;
+  // Every triangle lies in its part's hull: each part apart from each part of the other proves
+  // the meshes apart. A mesh without parts stands as one.
+  const auto shapes = [](const CollisionGeometry& g) {
+    std::vector<Shape> out;
+    if (g.parts.empty()) out.push_back(wholeOf(g));
+    for (const HullPart& part : g.parts) out.push_back(partOf(part));
+    return out;
+  };
+  const std::vector<Shape> parts_a = shapes(a), parts_b = shapes(b);
+  for (const Shape& part_a : parts_a)
+    for (const Shape& part_b : parts_b)
+      if (!shapesApart(part_a, pose_a, part_b, pose_b, by)) return false;
+  return true;
 }
 
 std::shared_ptr<const CollisionGeometry> collisionGeometry(

@@ -21,12 +21,25 @@ namespace graspkit {
 using BoundingVolume = fcl::OBBRSSd;
 using Bvh = fcl::BVHModel<BoundingVolume>;
 
+// The hull of one closed part of a mesh, with the box of the part's vertices (body frame, mm).
+struct HullPart {
+  geometry::ConvexHull hull;
+  Vector3 boxCenter;
+  Vector3 boxHalfSize;
+};
+
 struct CollisionGeometry {
   std::shared_ptr<const Bvh> bvh;            // never null
   Vector3 boxCenter;                         // body frame, mm
   Vector3 boxHalfSize;                       // half extents of the axis-aligned box, mm
   std::optional<geometry::ConvexHull> hull;  // of the hierarchy's vertices; none when flat
+  // A mesh put together from 2 to kMaxHullParts closed parts (a URDF or MJCF link of several
+  // geoms: a finger and its holder) has a hull per part, each with volume; empty otherwise. The
+  // parts' hulls hug the mesh where the whole hull spans the gaps between them.
+  std::vector<HullPart> parts;
 };
+
+inline constexpr int kMaxHullParts = 8;
 
 // The world axis-aligned box of a body-frame box under `pose`: the centre moves with the pose,
 // and the half extents become |R| times the half extents (Arvo's method).
@@ -60,6 +73,8 @@ bool rootVolumesApart(const CollisionGeometry& a, const Transform& pose_a,
 // GJK finds through the hulls' nearest points (geometry/hull_distance.hpp) are tried in turn; the
 // certificate is that every hull vertex of one lies below, and every one of the other above, a
 // plane across that axis, checked vertex by vertex, so GJK's tolerance never decides a collision.
+// Where the whole hulls meet and a mesh has parts (CollisionGeometry::parts), every part's hull
+// apart from every part's (or whole) hull of the other proves it the same way.
 // False proves nothing. With `by` > 0: whether they are certainly more than `by` mm apart.
 // A collision query tests rootVolumesApart first: a certificate is not worth its memory there.
 bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const CollisionGeometry& b,

@@ -3,6 +3,7 @@
 // are certified and touching ones never, and on GraspIt!'s Barrett around the mug the certificate
 // never contradicts FCL's own triangle test (a second method) while it settles most near pairs.
 
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -63,6 +64,97 @@ TEST(HullCertificate, CertifiesAGapAndNeverAContact) {
     into.translation() = Vector3(10.0 - overlap, 2.0, 3.0);
     EXPECT_FALSE(hullsApart(*a, at_origin, *a, into)) << overlap;
   }
+}
+
+// Cubes of side s at the given corners, one mesh: a closed part each.
+std::shared_ptr<TriangleMesh> cubes(double s, const std::vector<Vector3>& corners) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  const auto one = cube(s);
+  for (const Vector3& corner : corners) {
+    const auto first = static_cast<std::uint32_t>(mesh->vertices.size());
+    for (const Vector3& v : one->vertices) mesh->vertices.push_back(v + corner);
+    for (const auto& t : one->triangles)
+      mesh->triangles.push_back({t[0] + first, t[1] + first, t[2] + first});
+  }
+  return mesh;
+}
+
+Transform at(double x, double y, double z) {
+  Transform t = Transform::Identity();
+  t.translation() = Vector3(x, y, z);
+  return t;
+}
+
+// Two 10 mm cubes 20 mm apart (x from 0 to 10 and from 30 to 40) make one mesh whose whole hull
+// spans the gap. A 4 mm cube in the gap, 2 mm from the first (x from 12 to 16), lies inside that
+// hull, yet each part's hull is apart from it: 2 mm from one, 14 mm from the other.
+TEST(HullCertificate, PartsProveAMeshApartAcrossTheGapsOfItsHull) {
+  const auto pair = collisionGeometry(cubes(10.0, {{0, 0, 0}, {30, 0, 0}}));
+  const auto probe = collisionGeometry(cube(4.0));
+  ASSERT_TRUE(pair && pair->hull && probe && probe->hull);
+  ASSERT_EQ(pair->parts.size(), 2u);
+  EXPECT_TRUE(probe->parts.empty());
+  const Transform origin = Transform::Identity();
+  const Transform in_gap = at(12.0, 3.0, 3.0);
+  EXPECT_TRUE(hullsApart(*pair, origin, *probe, in_gap));
+  EXPECT_TRUE(hullsApart(*probe, in_gap, *pair, origin));
+  EXPECT_TRUE(hullsApart(*pair, origin, *probe, in_gap, 1.9));  // by less than the 2 mm
+  EXPECT_FALSE(hullsApart(*pair, origin, *probe, in_gap, 2.1));
+  // Touching or crossing the first cube: never apart, and FCL's triangles agree.
+  for (double x : {10.0, 9.5}) {
+    EXPECT_FALSE(hullsApart(*pair, origin, *probe, at(x, 3.0, 3.0))) << x;
+    const fcl::CollisionRequestd request(1, false);
+    fcl::CollisionResultd result;
+    EXPECT_GT(
+        fcl::collide(pair->bvh.get(), origin, probe->bvh.get(), at(x, 3.0, 3.0), request, result),
+        0u)
+        << x;
+  }
+  // Two meshes with parts: the pair against itself, turned a quarter about z and set in the gap
+  // so that the parts interleave without touching (closed form: 5 mm between nearest faces).
+  Transform turned = at(20.0 + 5.0, -15.0, 0.0);
+  turned.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3::UnitZ()).toRotationMatrix();
+  // Turned, its cubes span x from 15 to 25 and y from -15 to 25 with a gap for y in [-5, 15].
+  EXPECT_TRUE(hullsApart(*pair, origin, *pair, turned));
+  // More than kMaxHullParts parts: none kept.
+  std::vector<Vector3> many;
+  for (int k = 0; k <= kMaxHullParts; ++k) many.emplace_back(20.0 * k, 0.0, 0.0);
+  EXPECT_TRUE(collisionGeometry(cubes(1.0, many))->parts.empty());
+}
+
+// Random placements of a 4 mm cube around three separate cubes: whatever the parts certify,
+// FCL's triangle test finds apart (a second method), and they certify most placements inside the
+// whole hull that do not touch.
+TEST(HullCertificate, PartsNeverContradictFcl) {
+  const auto three = collisionGeometry(cubes(10.0, {{0, 0, 0}, {25, 0, 0}, {0, 25, 5}}));
+  const auto probe = collisionGeometry(cube(4.0));
+  ASSERT_EQ(three->parts.size(), 3u);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> coordinate(-5.0, 35.0), angle(-M_PI, M_PI);
+  int free_inside = 0, certified = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    Transform pose = at(coordinate(random), coordinate(random), coordinate(random) * 0.5);
+    pose.linear() = (Eigen::AngleAxisd(angle(random), Vector3::UnitZ()) *
+                     Eigen::AngleAxisd(angle(random), Vector3::UnitX()))
+                        .toRotationMatrix();
+    const bool apart = hullsApart(*three, Transform::Identity(), *probe, pose);
+    const fcl::CollisionRequestd request(1, false);
+    fcl::CollisionResultd result;
+    const bool touching = fcl::collide(three->bvh.get(), Transform::Identity(), probe->bvh.get(),
+                                       pose, request, result) > 0;
+    if (apart) EXPECT_FALSE(touching) << trial;
+    // Inside the whole hull's box, clear of every cube by more than the probe's reach (3.5 mm).
+    const Vector3 c = pose * Vector3(2, 2, 2);
+    const bool clear = (c - Vector3(5, 5, 5)).cwiseAbs().maxCoeff() > 8.5 &&
+                       (c - Vector3(30, 5, 5)).cwiseAbs().maxCoeff() > 8.5 &&
+                       (c - Vector3(5, 30, 10)).cwiseAbs().maxCoeff() > 8.5;
+    if (!touching && clear && c.x() > 10 && c.x() < 25 && c.y() > 0 && c.y() < 25) {
+      ++free_inside;
+      certified += apart;
+    }
+  }
+  ASSERT_GT(free_inside, 50);
+  EXPECT_GT(certified, free_inside * 9 / 10) << certified << " of " << free_inside;
 }
 
 // Checks every link of the hand against the mug with the certificate and with FCL's triangles;
