@@ -344,16 +344,15 @@ bool hullsApart(const CollisionGeometry& a, const Transform& pose_a, const Colli
   if (a.parts.empty() && b.parts.empty()) return false;
   // Every triangle lies in its part's hull: each part apart from each part of the other proves
   // the meshes apart. A mesh without parts stands as one.
-  const auto shapes = [](const CollisionGeometry& g) {
-    std::vector<Shape> out;
-    if (g.parts.empty()) out.push_back(wholeOf(g));
-    for (const HullPart& part : g.parts) out.push_back(partOf(part));
-    return out;
+  const auto shapeCount = [](const CollisionGeometry& g) {
+    return g.parts.empty() ? std::size_t{1} : g.parts.size();
   };
-  const std::vector<Shape> parts_a = shapes(a), parts_b = shapes(b);
-  for (const Shape& part_a : parts_a)
-    for (const Shape& part_b : parts_b)
-      if (!shapesApart(part_a, pose_a, part_b, pose_b, by)) return false;
+  const auto shape = [](const CollisionGeometry& g, std::size_t i) {
+    return g.parts.empty() ? wholeOf(g) : partOf(g.parts[i]);
+  };
+  for (std::size_t i = 0; i < shapeCount(a); ++i)
+    for (std::size_t j = 0; j < shapeCount(b); ++j)
+      if (!shapesApart(shape(a, i), pose_a, shape(b, j), pose_b, by)) return false;
   return true;
 }
 

@@ -227,39 +227,26 @@ std::vector<int> likelyPushing(const VectorX& q, const VectorX& start) {
   return contacts;
 }
 
-// The rows of `contacts` (3 each) of a vector of the whole problem.
-VectorX rowsOf(const VectorX& whole, const std::vector<int>& contacts) {
-  VectorX part(3 * static_cast<Eigen::Index>(contacts.size()));
-  for (std::size_t k = 0; k < contacts.size(); ++k)
-    part.segment<3>(3 * static_cast<Eigen::Index>(k)) = whole.segment<3>(3 * contacts[k]);
-  return part;
-}
-
 // The problem restricted to `contacts`, solved as a whole; the reactions and velocities are the
 // whole problem's, with no reaction at the other contacts.
 FrictionContactSolution solvePart(const MatrixX& W, const VectorX& q, const VectorX& mu,
                                   const VectorX& start, const std::vector<int>& contacts,
                                   double tolerance, int max_iterations,
                                   ContactSolverMethod method) {
-  const auto n = static_cast<Eigen::Index>(contacts.size());
+  // The part's rows: 3 per contact (normal, then the two tangents).
   std::vector<Eigen::Index> rows;
   for (int c : contacts)
-    for (int k = 0; k < 3; ++k) rows.push_back(3 * c + k);
-  MatrixX part_W(3 * n, 3 * n);
-  for (Eigen::Index i = 0; i < 3 * n; ++i)
-    for (Eigen::Index j = 0; j < 3 * n; ++j) part_W(i, j) = W(rows[i], rows[j]);
-  VectorX part_mu(n);
-  for (Eigen::Index k = 0; k < n; ++k) part_mu[k] = mu[contacts[static_cast<std::size_t>(k)]];
-  const VectorX part_start = start.size() == q.size() ? rowsOf(start, contacts) : VectorX();
-  const VectorX part_q = rowsOf(q, contacts);
+    for (int k = 0; k < 3; ++k) rows.push_back(3 * static_cast<Eigen::Index>(c) + k);
+  const MatrixX part_W = W(rows, rows);
+  const VectorX part_mu = mu(contacts);
+  const VectorX part_start = start.size() == q.size() ? VectorX(start(rows)) : VectorX();
+  const VectorX part_q = q(rows);
   // Siconos' residual is relative to |q|: the part is solved to the whole problem's accuracy.
   const double scale = part_q.norm() > 0.0 ? q.norm() / part_q.norm() : 1.0;
   FrictionContactSolution part =
       solveWhole(part_W, part_q, part_mu, part_start, tolerance * scale, max_iterations, method);
   VectorX reaction = VectorX::Zero(q.size());
-  for (Eigen::Index k = 0; k < n; ++k)
-    reaction.segment<3>(3 * contacts[static_cast<std::size_t>(k)]) =
-        part.reaction.segment<3>(3 * k);
+  reaction(rows) = part.reaction;
   part.reaction = std::move(reaction);
   part.velocity = W * part.reaction + q;
   return part;
