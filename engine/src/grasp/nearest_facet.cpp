@@ -16,6 +16,9 @@ constexpr int kMaxDim = 6;
 // thickness (1e-9 of its size by default, far below kForceClosureEpsilon for wrenches of unit
 // size), and a thinner first simplex could not orient the facets reliably.
 constexpr double kFlatFactor = 1e3;
+// How far below a facet's plane, in tolerances, a point may lie and still take the facet into
+// its cone when the facets it strictly sees leave a horizon that does not close (addPoint).
+constexpr double kCoplanarFactor = 100.0;
 using Points = Eigen::Ref<const Eigen::MatrixXd>;
 
 // A simplicial facet: D vertices, and across the ridge opposite vertex[i] the facet neighbor[i].
@@ -59,12 +62,12 @@ class ExpandingPolytope {
       result.origin = OriginPlacement::Flat;
       return result;
     }
-    for (int step = 0;; ++step) {
+    for (;;) {
       const int f = nearestLiveFacet();
       if (f < 0) return result;  // Unresolved: the queue ran dry
       const auto [beyond, distance] = supportPoint(facets_[static_cast<std::size_t>(f)]);
       if (beyond < 0 || distance <= tolerance_) return finish(f, result);
-      if (!addPoint(beyond, f, step)) return result;  // Unresolved
+      if (!addPoint(beyond, f)) return result;  // Unresolved
     }
   }
 
@@ -186,12 +189,12 @@ class ExpandingPolytope {
     return result;
   }
 
-  bool sees(const Facet& facet, int point) const {
-    return facet.normal.dot(this->point(point)) + facet.offset > tolerance_;
+  bool sees(const Facet& facet, int point, double threshold) const {
+    return facet.normal.dot(this->point(point)) + facet.offset > threshold;
   }
 
-  // The facets the point sees, connected to `start` (which it sees).
-  std::vector<int> visibleFrom(int point, int start, int step) {
+  // The facets the point sees, connected to `start` (which it sees), marked `step`.
+  std::vector<int> visibleFrom(int point, int start, int step, double threshold) {
     std::vector<int> visible = {start};
     facets_[static_cast<std::size_t>(start)].visited = step;
     for (std::size_t k = 0; k < visible.size(); ++k) {
@@ -199,7 +202,7 @@ class ExpandingPolytope {
       for (int i = 0; i < dim_; ++i) {
         const int g = facet.neighbor[static_cast<std::size_t>(i)];
         Facet& other = facets_[static_cast<std::size_t>(g)];
-        if (other.visited == step || !sees(other, point)) continue;
+        if (other.visited == step || !sees(other, point, threshold)) continue;
         other.visited = step;
         visible.push_back(g);
       }
@@ -207,40 +210,71 @@ class ExpandingPolytope {
     return visible;
   }
 
-  // Replaces the facets the point sees by the cone from the point to their horizon. False when
-  // the horizon is not a closed ridge cycle, which only rounding can cause.
-  bool addPoint(int point, int start, int step) {
-    const std::vector<int> visible = visibleFrom(point, start, step);
-    std::vector<ConeRidge> ridges;
-    std::vector<int> cone;
+  // A ridge of the horizon: visible facet `seen` meets facet `outside`, which the point does not
+  // see, across the ridge opposite the seen facet's vertex `position`.
+  struct HorizonRidge {
+    int seen = 0;
+    int position = 0;
+    int outside = 0;
+  };
+
+  // Replaces the facets the point sees by the cone from the point to their horizon. Facets that
+  // lie within rounding of the point's own hyperplane (coplanar contacts on one finger pad give
+  // many) can be seen from some sides and not from others, and the horizon then does not close.
+  // The point then also takes the facets it lies below by up to 1 and then 100 tolerances: the
+  // cone cuts from Q a sliver no thicker than that, 1e-10 of the points' size, which bounds what
+  // it can change in epsilon. False, with Q unchanged, when no horizon closes.
+  bool addPoint(int point, int start) {
+    for (double threshold : {tolerance_, -tolerance_, -kCoplanarFactor * tolerance_})
+      if (addPoint(point, start, threshold)) return true;
+    return false;
+  }
+
+  // addPoint() with the facets whose plane the point lies more than `threshold` beyond.
+  bool addPoint(int point, int start, double threshold) {
+    const int step = ++visits_;
+    const std::vector<int> visible = visibleFrom(point, start, step, threshold);
+    std::vector<HorizonRidge> horizon;
     for (int f : visible) {
+      const Facet& seen = facets_[static_cast<std::size_t>(f)];
       for (int i = 0; i < dim_; ++i) {
-        const Facet& seen = facets_[static_cast<std::size_t>(f)];
         const int outside = seen.neighbor[static_cast<std::size_t>(i)];
-        if (facets_[static_cast<std::size_t>(outside)].visited == step) continue;
-        // A horizon ridge: the new facet keeps the ridge and puts the point where vertex i was,
-        // so the ridge opposite the point is the one it shares with `outside`.
-        Facet facet;
-        facet.vertex = seen.vertex;
-        facet.vertex[static_cast<std::size_t>(i)] = point;
-        facet.neighbor[static_cast<std::size_t>(i)] = outside;
-        const int id = push(std::move(facet));
-        Facet& kept = facets_[static_cast<std::size_t>(outside)];
-        auto back = std::find(kept.neighbor.begin(), kept.neighbor.begin() + dim_, f);
-        if (back == kept.neighbor.begin() + dim_) return false;
-        *back = id;
-        cone.push_back(id);
-        addConeRidges(id, i, ridges);
+        const Facet& other = facets_[static_cast<std::size_t>(outside)];
+        if (other.visited == step) continue;
+        if (std::find(other.neighbor.begin(), other.neighbor.begin() + dim_, f) ==
+            other.neighbor.begin() + dim_)
+          return false;
+        horizon.push_back({f, i, outside});
       }
+    }
+    // The cone's facets, checked to pair up across their ridges before Q changes.
+    std::vector<Facet> cone;
+    std::vector<ConeRidge> ridges;
+    for (const HorizonRidge& ridge : horizon) {
+      Facet facet;
+      facet.vertex = facets_[static_cast<std::size_t>(ridge.seen)].vertex;
+      facet.vertex[static_cast<std::size_t>(ridge.position)] = point;
+      facet.neighbor[static_cast<std::size_t>(ridge.position)] = ridge.outside;
+      addConeRidges(facet, static_cast<int>(facets_.size() + cone.size()), ridge.position, ridges);
+      cone.push_back(std::move(facet));
+    }
+    if (!pairRidges(ridges)) return false;
+    // The horizon is closed: the cone replaces the visible facets.
+    for (std::size_t k = 0; k < cone.size(); ++k) {
+      const HorizonRidge& ridge = horizon[k];
+      const int id = push(std::move(cone[k]));
+      Facet& kept = facets_[static_cast<std::size_t>(ridge.outside)];
+      *std::find(kept.neighbor.begin(), kept.neighbor.begin() + dim_, ridge.seen) = id;
     }
     for (int f : visible) facets_[static_cast<std::size_t>(f)].alive = false;
     added_[static_cast<std::size_t>(point)] = true;
-    return linkCone(ridges);
+    linkCone(ridges);
+    return true;
   }
 
-  // The ridges of new facet `id` that contain the apex (at `apex`): one per other vertex.
-  void addConeRidges(int id, int apex, std::vector<ConeRidge>& ridges) const {
-    const Facet& facet = facets_[static_cast<std::size_t>(id)];
+  // The ridges of new facet `facet` (to be `id`) that contain the apex (at `apex`): one per
+  // other vertex.
+  static void addConeRidges(const Facet& facet, int id, int apex, std::vector<ConeRidge>& ridges) {
     for (int m = 0; m < dim_; ++m) {
       if (m == apex) continue;
       ConeRidge ridge;
@@ -255,13 +289,20 @@ class ExpandingPolytope {
     }
   }
 
-  // Pairs the cone's facets across their shared ridges: each key must occur exactly twice.
-  bool linkCone(std::vector<ConeRidge>& ridges) {
+  // Sorts the cone's ridges by key; true when each key occurs exactly twice (the facets pair up).
+  static bool pairRidges(std::vector<ConeRidge>& ridges) {
     std::sort(ridges.begin(), ridges.end(),
               [](const ConeRidge& a, const ConeRidge& b) { return a.key < b.key; });
     for (std::size_t k = 0; k < ridges.size(); k += 2) {
       if (k + 1 >= ridges.size() || ridges[k].key != ridges[k + 1].key) return false;
       if (k + 2 < ridges.size() && ridges[k + 2].key == ridges[k].key) return false;
+    }
+    return true;
+  }
+
+  // Links the cone's facets across their shared ridges, sorted and paired by pairRidges().
+  void linkCone(const std::vector<ConeRidge>& ridges) {
+    for (std::size_t k = 0; k < ridges.size(); k += 2) {
       const ConeRidge& a = ridges[k];
       const ConeRidge& b = ridges[k + 1];
       facets_[static_cast<std::size_t>(a.facet)].neighbor[static_cast<std::size_t>(a.position)] =
@@ -269,7 +310,6 @@ class ExpandingPolytope {
       facets_[static_cast<std::size_t>(b.facet)].neighbor[static_cast<std::size_t>(b.position)] =
           a.facet;
     }
-    return true;
   }
 
   std::vector<Vec> points_;
@@ -278,6 +318,7 @@ class ExpandingPolytope {
   Vec interior_;
   std::vector<Facet> facets_;
   std::priority_queue<std::pair<double, int>> queue_;
+  int visits_ = -1;  // the last visible-set search's mark
 };
 
 }  // namespace

@@ -8,11 +8,12 @@
 // front of the origin the most (the nearest one once the origin is inside) is taken; the point
 // farthest beyond it (the support point in its normal's direction, a scan over the points) is
 // added when it lies beyond by more than a tolerance, replacing the facets it sees with a cone
-// from their horizon. Otherwise that facet's plane supports the whole set, and since Q lies
-// inside the set's hull, the facet is one of the hull's and the nearest: its distance is
-// epsilon (when the origin is beyond it, the origin is outside the hull). Each point is added
-// at most once, and the search stays near the origin, so only a fraction of the hull's facets
-// is ever built.
+// from their horizon (where rounding leaves that horizon open, as coplanar contacts can, the
+// facets the point lies below by up to 100 tolerances join the cone). Otherwise that facet's plane
+// supports the whole set, and since Q lies inside the set's hull, the facet is one of the hull's
+// and the nearest: its distance is epsilon (when the origin is beyond it, the origin is outside the
+// hull). Each point is added at most once, and the search stays near the origin, so only a fraction
+// of the hull's facets is ever built.
 
 #include <Eigen/Core>
 
