@@ -269,6 +269,13 @@ std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef*
   return contacts;
 }
 
+std::vector<Contact> contactsWith(const std::vector<Contact>& contacts, const BodyRef& object) {
+  std::vector<Contact> with;
+  for (const Contact& c : contacts)
+    if (c.body2 == object) with.push_back(c);
+  return with;
+}
+
 AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options) {
   const std::shared_ptr<const RobotType>& type = world.robot(robot).model().robotType;
   return type ? type->autoGrasp(world, robot, options) : genericAutoGrasp(world, robot, options);

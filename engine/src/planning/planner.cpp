@@ -48,10 +48,12 @@ bool finishGrasp(PlanningScene& scene, PlannedGrasp& grasp, const std::function<
   scene.setHand(grasp.pose, grasp.dofs);
   AutoGraspOptions close;
   close.keepGoing = keepGoing;
-  if (autoGrasp(scene.world(), scene.robot(), close).end == MotionEnd::Stopped) return false;
+  const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot(), close);
+  if (closed.end == MotionEnd::Stopped) return false;
   GraspRequest request;
   if (measure == CloseMeasure::Ranking) request.wrenchSpace.method = HullMethod::NearestFacet;
-  Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object(), request);
+  Grasp measured = analyzeGrasp(scene.world(), scene.robot(), scene.object(),
+                                contactsWith(closed.contacts, scene.object()), request);
   grasp.closed = scene.handConfiguration();
   grasp.epsilon = measured.epsilon;
   grasp.volume = measured.volume;

@@ -185,8 +185,9 @@ class GuidedPotentialQualityEnergy final : public SearchEnergy {
 };
 
 double autoGraspQuality(PlanningScene& scene) {
-  autoGrasp(scene.world(), scene.robot());
-  const Grasp grasp = analyzeGrasp(scene.world(), scene.robot(), scene.object());
+  const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
+  const Grasp grasp = analyzeGrasp(scene.world(), scene.robot(), scene.object(),
+                                   contactsWith(closed.contacts, scene.object()));
   return -(kVolumeWeight * grasp.volume + kEpsilonWeight * std::max(grasp.epsilon, 0.0));
 }
 

@@ -162,6 +162,32 @@ TEST(AutoGrasp, BarrettOnTheMugNeverInterpenetrates) {
   expectNoLinkCollides(world, 0, mug);
 }
 
+// A close's own contacts, taken with one body, are what a contact search with that body alone
+// finds: the planner measures its closes from them (contactsWith) instead of searching again.
+TEST(AutoGrasp, ContactsWithABodyAreTheSearchWithThatBody) {
+  for (const char* file : {"default.xml", "gripper_box.xml"}) {
+    World world = loadWorldFile(test::modelsDir() / "worlds" / file);
+    const AutoGraspResult result = autoGrasp(world, 0);
+    ASSERT_FALSE(result.contacts.empty()) << file;
+    std::size_t shared_out = 0;
+    for (const BodyRef& body : worldBodies(world)) {
+      const std::vector<Contact> taken = contactsWith(result.contacts, body);
+      const std::vector<Contact> searched = robotContacts(world, 0, &body);
+      ASSERT_EQ(taken.size(), searched.size()) << file << ", " << bodyName(world, body);
+      for (std::size_t i = 0; i < taken.size(); ++i) {
+        EXPECT_EQ(taken[i].body1, searched[i].body1);
+        EXPECT_EQ(taken[i].body2, body);
+        EXPECT_EQ(taken[i].position1, searched[i].position1);
+        EXPECT_EQ(taken[i].normal, searched[i].normal);
+        EXPECT_EQ(taken[i].distance, searched[i].distance);
+      }
+      shared_out += taken.size();
+    }
+    // Every contact is with exactly one other body.
+    EXPECT_EQ(shared_out, result.contacts.size()) << file;
+  }
+}
+
 // GraspIt!'s breakaway: a joint is in breakaway once its DOF has gone on more than 1e-5 past
 // where the joint stopped. A contact on a distal link stops the joints behind it too, so a
 // finger's DOF stops with its distal joint: that joint still follows its DOF, and a simulation

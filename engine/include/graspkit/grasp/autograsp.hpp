@@ -102,4 +102,10 @@ AutoGraspResult approachToContact(World& world, int robot, const ApproachOptions
 // them with, seen from the links. With `object`, only contacts with that body.
 std::vector<Contact> robotContacts(const World& world, int robot, const BodyRef* object = nullptr);
 
+// Of `contacts` (seen from the links, as robotContacts() gives them), those with `object`, in
+// order: what robotContacts(world, robot, &object) gives where `contacts` are the robot's. A close
+// returns its final contacts (AutoGraspResult::contacts), so measuring the grasp it left needs
+// no second contact search.
+std::vector<Contact> contactsWith(const std::vector<Contact>& contacts, const BodyRef& object);
+
 }  // namespace graspkit
