@@ -10,6 +10,7 @@
 #include <mutex>
 #include <optional>
 #include <random>
+#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -57,8 +58,8 @@ class RestartPlanner final : public Planner {
         [space = space_, radius](std::span<const double> a, std::span<const double> b) {
           return space->distance(a, b, radius);
         },
-        [world = request.world, robot = request.robot, object = request.object](PlannedGrasp& g) {
-          measureVolume(*world, robot, object, g);
+        [this](PlannedGrasp& g) {
+          if (std::isnan(g.volume)) g.volume = graspItFigures(g).volume;
         });
     worldStart_ = request.states.empty() ? startState(pool_->scene(0)) : request.states.front();
     if (static_cast<int>(worldStart_.values.size()) != space_->size())
@@ -99,6 +100,11 @@ class RestartPlanner final : public Planner {
 
   // The grasp with GraspIt!'s figures (measureAsGraspIt), each kept grasp measured once.
   PlannedGrasp reported(const PlannedGrasp& grasp) const;
+  struct Figures;
+  // GraspIt!'s figures of a kept grasp, measured at its first need: a volume that breaks a tie
+  // needs GraspIt!'s whole hull, which gives its epsilon too, so a grasp measured for a tie and
+  // then returned is measured once.
+  const Figures& graspItFigures(const PlannedGrasp& grasp) const;
 
   PlanningRequest request_;
   RestartSettings settings_;
@@ -107,7 +113,8 @@ class RestartPlanner final : public Planner {
   SearchState worldStart_;
   DistinctGrasps kept_;
   std::int64_t merged_ = 0;  // restarts 0 .. merged_ - 1 are in kept_
-  // GraspIt!'s epsilon, force closure and volume of the grasps best() returned, by their values.
+  // GraspIt!'s epsilon, force closure and volume of the grasps best() returned or whose volume
+  // broke a tie, by their values (kept_'s volumes are measured under run()'s lock, as best() is).
   struct Figures {
     double epsilon;
     bool forceClosure;
@@ -139,16 +146,31 @@ std::vector<PlannedGrasp> RestartPlanner::best() const {
   return grasps;
 }
 
-PlannedGrasp RestartPlanner::reported(const PlannedGrasp& grasp) const {
-  PlannedGrasp out = grasp;
+const RestartPlanner::Figures& RestartPlanner::graspItFigures(const PlannedGrasp& grasp) const {
   auto it = reported_.find(grasp.values);
   if (it == reported_.end()) {
-    measureAsGraspIt(*request_.world, request_.robot, request_.object, out);
-    it = reported_.emplace(grasp.values, Figures{out.epsilon, out.forceClosure, out.volume}).first;
+    if (reported_.size() > 2 * kept_.size() + 256) {
+      // Grasps that kept_ has since replaced are never asked about again.
+      std::set<std::vector<double>> kept;
+      for (const PlannedGrasp& g : kept_.grasps()) kept.insert(g.values);
+      std::erase_if(reported_, [&](const auto& entry) { return !kept.contains(entry.first); });
+    }
+    PlannedGrasp measured = grasp;
+    measureAsGraspIt(*request_.world, request_.robot, request_.object, measured);
+    it = reported_
+             .emplace(grasp.values,
+                      Figures{measured.epsilon, measured.forceClosure, measured.volume})
+             .first;
   }
-  out.epsilon = it->second.epsilon;
-  out.forceClosure = it->second.forceClosure;
-  out.volume = it->second.volume;
+  return it->second;
+}
+
+PlannedGrasp RestartPlanner::reported(const PlannedGrasp& grasp) const {
+  PlannedGrasp out = grasp;
+  const Figures& figures = graspItFigures(grasp);
+  out.epsilon = figures.epsilon;
+  out.forceClosure = figures.forceClosure;
+  out.volume = figures.volume;
   return out;
 }
 

@@ -41,6 +41,7 @@ class DistinctGrasps {
   // grasps: one thread at a time, as offer().
   std::vector<PlannedGrasp> best(std::size_t count) const;
   std::size_t size() const { return grasps_.size(); }
+  const std::vector<PlannedGrasp>& grasps() const { return grasps_; }  // as kept, unordered
   int forceClosureCount() const;
 
  private:
