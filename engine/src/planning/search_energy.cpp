@@ -16,6 +16,7 @@
 #include "graspkit/planning/planning_scene.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_state.hpp"
+#include "planning/sample_bound.hpp"
 
 namespace graspkit {
 
@@ -56,11 +57,7 @@ class NearestPoints {
 
   Answer find(const PlanningScene& scene, const PlacedVirtualContact& contact,
               double within = std::numeric_limits<double>::infinity()) {
-    const Transform objectPose = bodyPose(scene.world(), scene.object());
-    if (!objectPose.isApprox(object_pose_, 0.0)) {
-      object_pose_ = objectPose;
-      last_.clear();
-    }
+    refresh(scene);
     const auto i = static_cast<std::size_t>(contact.index);
     if (last_.size() <= i) last_.resize(i + 1);
     std::optional<SurfacePoint> nearest;
@@ -77,10 +74,34 @@ class NearestPoints {
     return {nearest->point, nearest->distance > within};
   }
 
+  // What the object's box and ball say of the contact's sample before any query.
+  planning::SampleBound bound(const PlanningScene& scene, const PlacedVirtualContact& contact) {
+    refresh(scene);
+    return planning::sampleBound(object_, contact.point, contact.normal);
+  }
+
  private:
+  // Forgets the last points when the object moved, and takes its bounds.
+  void refresh(const PlanningScene& scene) {
+    const Transform objectPose = bodyPose(scene.world(), scene.object());
+    if (&scene == scene_ && objectPose.isApprox(object_pose_, 0.0)) return;
+    scene_ = &scene;
+    object_pose_ = objectPose;
+    last_.clear();
+    const auto& mesh = bodyModel(scene.world(), scene.object()).mesh;
+    object_ = mesh ? planning::objectBounds(*mesh, objectPose) : planning::ObjectBounds{};
+  }
+
+  const PlanningScene* scene_ = nullptr;  // the scene the memory is of
   Transform object_pose_ = Transform(Eigen::Matrix4d::Zero());
   std::vector<std::optional<Vector3>> last_;
+  planning::ObjectBounds object_;
 };
+
+// The least a contact's energy term can be, from the bound alone.
+double leastTerm(const planning::SampleBound& b) {
+  return b.distance + kNormalWeight * (1.0 - b.cosine);
+}
 
 // The contact's sample; nullopt when its nearest object point lies beyond `within`.
 std::optional<ContactSample> sample(const PlanningScene& scene, const PlacedVirtualContact& contact,
@@ -96,19 +117,31 @@ std::optional<ContactSample> sample(const PlanningScene& scene, const PlacedVirt
   return s;
 }
 
-// The mean over virtual contacts; the sum stops once it exceeds `bound` (every term is >= 0 but
-// for rounding, below 1e-13, which the 1e-9 margin covers), returning the partial mean.
+// The mean over virtual contacts. With a finite `bound`, the sum stops once the terms summed and
+// the least the others can be (NearestPoints::bound) exceed it, returning that mean: above the
+// bound, as a true sum would be. Every term is >= 0 but for rounding, below 1e-13, which the
+// 1e-9 margin covers. A sum that stays below the bound is made of the same terms in the same
+// order as a full one.
 double contactEnergy(const PlanningScene& scene, NearestPoints& cache,
                      double bound = std::numeric_limits<double>::infinity()) {
   const auto contacts = scene.virtualContacts();
   if (contacts.empty()) return 0.0;
   const auto count = static_cast<double>(contacts.size());
   const double stop = (bound + 1e-9) * count;
+  thread_local std::vector<double> least;
+  least.assign(contacts.size(), 0.0);
+  double rest = 0.0;  // the least the terms not yet summed can add
+  if (std::isfinite(stop)) {
+    for (std::size_t i = 0; i < contacts.size(); ++i)
+      rest += least[i] = leastTerm(cache.bound(scene, contacts[i]));
+    if (rest > stop) return rest / count;
+  }
   double total = 0.0;
-  for (const PlacedVirtualContact& contact : contacts) {
-    const ContactSample s = *sample(scene, contact, cache);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const ContactSample s = *sample(scene, contacts[i], cache);
     total += s.distance + kNormalWeight * (1.0 - s.cosine);
-    if (total > stop) break;
+    rest = std::max(0.0, rest - least[i]);
+    if (total + rest > stop) return (total + rest) / count;
   }
   return total / count;
 }
@@ -123,7 +156,10 @@ double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) 
   const auto& models = scene.virtualContactModels();
   std::vector<std::vector<Vector6>> wrenches;
   for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
-    // A contact beyond the potential's range scales to 0: no need for its exact nearest point.
+    // A contact beyond the potential's range, or facing too far from the object's ball, scales
+    // to 0: no need for its exact nearest point.
+    const planning::SampleBound b = cache.bound(scene, contact);
+    if (b.distance > kPotentialRange || b.cosine < kPotentialMinCosine) continue;
     const std::optional<ContactSample> s = sample(scene, contact, cache, kPotentialRange);
     if (!s) continue;
     const double scale = potentialScale(s->distance, s->cosine);
