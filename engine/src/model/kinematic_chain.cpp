@@ -32,14 +32,25 @@ std::vector<Transform> jointFrames(const KinematicChain& chain,
 
 std::vector<Transform> linkPoses(const KinematicChain& chain, const Transform& chain_base_in_world,
                                  std::span<const double> joint_values) {
-  const std::vector<Transform> frames = jointFrames(chain, chain_base_in_world, joint_values);
   std::vector<Transform> poses;
-  poses.reserve(chain.links.size());
+  linkPoses(chain, chain_base_in_world, joint_values, poses);
+  return poses;
+}
+
+void linkPoses(const KinematicChain& chain, const Transform& chain_base_in_world,
+               std::span<const double> joint_values, std::vector<Transform>& poses) {
+  thread_local std::vector<Transform> frames;
+  frames.clear();
+  Transform frame = chain_base_in_world;
+  for (std::size_t j = 0; j < chain.joints.size(); ++j) {
+    frame = frame * chain.joints[j].transform(joint_values[j]);
+    frames.push_back(frame);
+  }
+  poses.clear();
   for (const Link& link : chain.links) {
     poses.push_back((link.lastJoint < 0 ? chain_base_in_world : frames[link.lastJoint]) *
                     link.frame);
   }
-  return poses;
 }
 
 }  // namespace graspkit

@@ -124,6 +124,20 @@ void Robot::setPose(const Transform& pose) {
 }
 
 void Robot::setDofValues(std::span<const double> values, LimitPolicy policy) {
+  takeDofValues(values, policy);
+  updateJoints();
+  updateLinkPoses();
+}
+
+void Robot::setPoseAndDofValues(const Transform& pose, std::span<const double> values,
+                                LimitPolicy policy) {
+  takeDofValues(values, policy);
+  pose_ = pose;
+  updateJoints();
+  updateLinkPoses();
+}
+
+void Robot::takeDofValues(std::span<const double> values, LimitPolicy policy) {
   if (values.size() != dof_values_.size()) {
     throw Error(fmt::format("robot '{}' has {} DOFs, {} values given", name(), dof_values_.size(),
                             values.size()));
@@ -136,8 +150,6 @@ void Robot::setDofValues(std::span<const double> values, LimitPolicy policy) {
   for (std::size_t d = 0; d < values.size(); ++d) {
     dof_values_[d] = policy == LimitPolicy::Clamp ? model_->dofs[d].clamp(values[d]) : values[d];
   }
-  updateJoints();
-  updateLinkPoses();
 }
 
 void Robot::setDofValue(int dof, double value, LimitPolicy policy) {
@@ -195,7 +207,7 @@ void Robot::updateLinkPoses() {
   for (std::size_t c = 0; c < model_->chains.size(); ++c) {
     const KinematicChain& chain = model_->chains[c];
     std::span<const double> values(joint_values_.data() + chain.firstJoint, chain.joints.size());
-    link_poses_[c] = graspkit::linkPoses(chain, pose_ * chain.base, values);
+    graspkit::linkPoses(chain, pose_ * chain.base, values, link_poses_[c]);
   }
 }
 

@@ -120,6 +120,12 @@ void World::setDofValues(int robot, std::span<const double> values, LimitPolicy 
   updateChildren(robot);
 }
 
+void World::setRobotPoseAndDofValues(int robot, const Transform& pose,
+                                     std::span<const double> values, LimitPolicy policy) {
+  mutableRobot(robot).setPoseAndDofValues(pose, values, policy);
+  updateChildren(robot);
+}
+
 void World::setDofVelocities(int robot, std::span<const double> velocities) {
   mutableRobot(robot).setDofVelocities(velocities);
 }

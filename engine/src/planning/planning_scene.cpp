@@ -55,8 +55,7 @@ void PlanningScene::setHand(const Transform& pose, std::span<const double> dofs)
   const Robot& robot = hand();
   for (int j = 0; j < static_cast<int>(robot.breakaway().size()); ++j)
     if (robot.breakaway()[j].engaged) world_.setBreakaway(robot_, j, BreakawayState{});
-  world_.setRobotPose(robot_, pose);
-  world_.setDofValues(robot_, dofs, LimitPolicy::Clamp);
+  world_.setRobotPoseAndDofValues(robot_, pose, dofs, LimitPolicy::Clamp);
 }
 
 HandConfiguration PlanningScene::handConfiguration() const {

@@ -619,6 +619,33 @@ TEST_F(WorldTest, ChildFollowsParentChainEnd) {
   EXPECT_TRUE(transformNear(world_.robot(1).pose(), base * armTip(q[0], q[1]) * offset_));
 }
 
+TEST_F(WorldTest, PoseAndDofValuesAtOncePlaceTheArmAndItsMount) {
+  world_.connect(connection(0, 0, 1, offset_));
+  const Transform base = translation(-5, 40, 12) * rotZ(0.3);
+  const std::vector<double> q = {-0.6, 1.3};
+  world_.setRobotPoseAndDofValues(0, base, q);
+  // The planar arm's closed form, under the new base, and the mounted child follows.
+  EXPECT_TRUE(transformNear(world_.robot(0).pose(), base));
+  EXPECT_TRUE(transformNear(world_.robot(0).chainEndPose(0), base * armTip(q[0], q[1])));
+  EXPECT_TRUE(transformNear(world_.robot(1).pose(), base * armTip(q[0], q[1]) * offset_));
+  // The same link poses, bit for bit, as the pose then the values.
+  World apart = world_.clone();
+  apart.setRobotPose(0, translation(1, 2, 3));
+  apart.setRobotPose(0, base);
+  apart.setDofValues(0, q);
+  EXPECT_EQ(apart.robot(0).linkPoses()[0][1].matrix(), world_.robot(0).linkPoses()[0][1].matrix());
+  EXPECT_EQ(apart.robot(1).pose().matrix(), world_.robot(1).pose().matrix());
+  // Bad values change nothing, not even the pose.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(
+      world_.setRobotPoseAndDofValues(0, Transform::Identity(), std::vector<double>{nan, 0}),
+      Error);
+  EXPECT_THROW(world_.setRobotPoseAndDofValues(0, Transform::Identity(), std::vector<double>{0}),
+               Error);
+  EXPECT_TRUE(transformNear(world_.robot(0).pose(), base));
+  EXPECT_TRUE(transformNear(world_.robot(0).chainEndPose(0), base * armTip(q[0], q[1])));
+}
+
 TEST_F(WorldTest, GrandchildFollowsThroughTwoMounts) {
   world_.connect(connection(0, 0, 1, offset_));
   const Transform offset2 = translation(1, 2, 3);

@@ -27,5 +27,8 @@ std::vector<Transform> jointFrames(const KinematicChain& chain,
 // chain base when it consumes no joint before it), times its own Link::frame.
 std::vector<Transform> linkPoses(const KinematicChain& chain, const Transform& chain_base_in_world,
                                  std::span<const double> joint_values);
+// The same into `poses`, whose storage is kept (a planner places the hand at every step).
+void linkPoses(const KinematicChain& chain, const Transform& chain_base_in_world,
+               std::span<const double> joint_values, std::vector<Transform>& poses);
 
 }  // namespace graspkit

@@ -125,6 +125,10 @@ class Robot {
   // Throws graspkit::Error for a wrong count or a non-finite value.
   void setDofValues(std::span<const double> values, LimitPolicy policy = LimitPolicy::Clamp);
   void setDofValue(int dof, double value, LimitPolicy policy = LimitPolicy::Clamp);
+  // setPose and setDofValues at once, the links placed once (a planner's every step). Nothing
+  // changes when it throws.
+  void setPoseAndDofValues(const Transform& pose, std::span<const double> values,
+                           LimitPolicy policy = LimitPolicy::Clamp);
 
   // Joint values, robot-wide order, DH offsets excluded.
   std::span<const double> jointValues() const { return joint_values_; }
@@ -156,6 +160,8 @@ class Robot {
   const Transform& chainEndPose(int chain) const { return link_poses_[chain].back(); }
 
  private:
+  // Checks and takes (clamped or not) every DOF value; the joints and links are not moved.
+  void takeDofValues(std::span<const double> values, LimitPolicy policy);
   void updateJoints();
   void updateLinkPoses();
 

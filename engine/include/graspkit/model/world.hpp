@@ -89,6 +89,8 @@ class World {
   void setRobotPose(int robot, const Transform& pose);
   void setDofValues(int robot, std::span<const double> values,
                     LimitPolicy policy = LimitPolicy::Clamp);
+  void setRobotPoseAndDofValues(int robot, const Transform& pose, std::span<const double> values,
+                                LimitPolicy policy = LimitPolicy::Clamp);
   // Breaks joint `joint` of `robot` away (or re-engages it); mounted robots follow.
   void setBreakaway(int robot, int joint, BreakawayState state);
   // Robot::releaseBreakawayNotLagging on `robot`; mounted robots follow.
