@@ -45,6 +45,8 @@ PlanningScene::PlanningScene(World world, int robot, BodyRef object,
     virtual_contacts_ = deriveVirtualContacts(hand());
     derived_contacts_ = true;
   }
+  for (const VirtualContact& contact : virtual_contacts_)
+    contact_frames_.push_back(makeTransform(contact.translation, contact.rotation));
 }
 
 void PlanningScene::place(std::span<const double> values) {
@@ -70,13 +72,28 @@ bool PlanningScene::handCollides() const {
   return anyCollision(world_, hand_links_);
 }
 
+namespace {
+
+PlacedVirtualContact placeWithFrame(const Robot& robot, const VirtualContact& contact,
+                                    const Transform& frame_in_link) {
+  const Transform& link =
+      contact.finger < 0 ? robot.pose() : robot.linkPose(contact.finger, contact.link);
+  PlacedVirtualContact p;
+  p.point = link * contact.location;
+  p.normal = (link.linear() * contact.normal).normalized();
+  p.frame = link * frame_in_link;
+  return p;
+}
+
+}  // namespace
+
 std::vector<PlacedVirtualContact> PlanningScene::virtualContacts() const {
   const Robot& robot = hand();
   const auto& contacts = virtual_contacts_;
   std::vector<PlacedVirtualContact> placed;
   placed.reserve(contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
-    PlacedVirtualContact p = placeVirtualContact(robot, contacts[i]);
+    PlacedVirtualContact p = placeWithFrame(robot, contacts[i], contact_frames_[i]);
     p.index = static_cast<int>(i);
     placed.push_back(p);
   }
@@ -84,13 +101,7 @@ std::vector<PlacedVirtualContact> PlanningScene::virtualContacts() const {
 }
 
 PlacedVirtualContact placeVirtualContact(const Robot& robot, const VirtualContact& contact) {
-  const Transform& link =
-      contact.finger < 0 ? robot.pose() : robot.linkPose(contact.finger, contact.link);
-  PlacedVirtualContact p;
-  p.point = link * contact.location;
-  p.normal = (link.linear() * contact.normal).normalized();
-  p.frame = link * makeTransform(contact.translation, contact.rotation);
-  return p;
+  return placeWithFrame(robot, contact, makeTransform(contact.translation, contact.rotation));
 }
 
 std::optional<SurfacePoint> PlanningScene::nearestObjectPoint(const Vector3& point,

@@ -57,7 +57,6 @@ class NearestPoints {
 
   Answer find(const PlanningScene& scene, const PlacedVirtualContact& contact,
               double within = std::numeric_limits<double>::infinity()) {
-    refresh(scene);
     const auto i = static_cast<std::size_t>(contact.index);
     if (last_.size() <= i) last_.resize(i + 1);
     std::optional<SurfacePoint> nearest;
@@ -75,13 +74,12 @@ class NearestPoints {
   }
 
   // What the object's box and ball say of the contact's sample before any query.
-  planning::SampleBound bound(const PlanningScene& scene, const PlacedVirtualContact& contact) {
-    refresh(scene);
+  planning::SampleBound bound(const PlacedVirtualContact& contact) const {
     return planning::sampleBound(object_, contact.point, contact.normal);
   }
 
- private:
-  // Forgets the last points when the object moved, and takes its bounds.
+  // Forgets the last points when the object moved, and takes its bounds: once per evaluation,
+  // before find and bound.
   void refresh(const PlanningScene& scene) {
     const Transform objectPose = bodyPose(scene.world(), scene.object());
     if (&scene == scene_ && objectPose.isApprox(object_pose_, 0.0)) return;
@@ -92,6 +90,7 @@ class NearestPoints {
     object_ = mesh ? planning::objectBounds(*mesh, objectPose) : planning::ObjectBounds{};
   }
 
+ private:
   const PlanningScene* scene_ = nullptr;  // the scene the memory is of
   Transform object_pose_ = Transform(Eigen::Matrix4d::Zero());
   std::vector<std::optional<Vector3>> last_;
@@ -126,6 +125,7 @@ double contactEnergy(const PlanningScene& scene, NearestPoints& cache,
                      double bound = std::numeric_limits<double>::infinity()) {
   const auto contacts = scene.virtualContacts();
   if (contacts.empty()) return 0.0;
+  cache.refresh(scene);
   const auto count = static_cast<double>(contacts.size());
   const double stop = (bound + 1e-9) * count;
   thread_local std::vector<double> least;
@@ -133,7 +133,7 @@ double contactEnergy(const PlanningScene& scene, NearestPoints& cache,
   double rest = 0.0;  // the least the terms not yet summed can add
   if (std::isfinite(stop)) {
     for (std::size_t i = 0; i < contacts.size(); ++i)
-      rest += least[i] = leastTerm(cache.bound(scene, contacts[i]));
+      rest += least[i] = leastTerm(cache.bound(contacts[i]));
     if (rest > stop) return rest / count;
   }
   double total = 0.0;
@@ -154,11 +154,12 @@ double potentialScale(double distance, double cosine) {
 
 double potentialQualityEnergy(const PlanningScene& scene, NearestPoints& cache) {
   const auto& models = scene.virtualContactModels();
+  cache.refresh(scene);
   std::vector<std::vector<Vector6>> wrenches;
   for (const PlacedVirtualContact& contact : scene.virtualContacts()) {
     // A contact beyond the potential's range, or facing too far from the object's ball, scales
     // to 0: no need for its exact nearest point.
-    const planning::SampleBound b = cache.bound(scene, contact);
+    const planning::SampleBound b = cache.bound(contact);
     if (b.distance > kPotentialRange || b.cosine < kPotentialMinCosine) continue;
     const std::optional<ContactSample> s = sample(scene, contact, cache, kPotentialRange);
     if (!s) continue;

@@ -82,6 +82,7 @@ class PlanningScene {
   std::vector<BodyRef> hand_links_;
   RayScene object_scene_;
   std::vector<VirtualContact> virtual_contacts_;
+  std::vector<Transform> contact_frames_;  // each contact's frame in its link's, made once
   bool derived_contacts_ = false;
 };
 
