@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
 #include "graspkit/grasp/autograsp.hpp"
 #include "graspkit/grasp/grasp.hpp"
@@ -80,18 +81,20 @@ class NearestPoints {
 
   // Forgets the last points when the object moved, and takes its bounds: once per evaluation,
   // before find and bound.
+  // The bounds decide, so the object is known by its mesh, held here so that no other mesh can
+  // take its address, and its pose.
   void refresh(const PlanningScene& scene) {
     const Transform objectPose = bodyPose(scene.world(), scene.object());
-    if (&scene == scene_ && objectPose.isApprox(object_pose_, 0.0)) return;
-    scene_ = &scene;
+    const auto& mesh = bodyModel(scene.world(), scene.object()).mesh;
+    if (mesh == mesh_ && objectPose.isApprox(object_pose_, 0.0)) return;
+    mesh_ = mesh;
     object_pose_ = objectPose;
     last_.clear();
-    const auto& mesh = bodyModel(scene.world(), scene.object()).mesh;
     object_ = mesh ? planning::objectBounds(*mesh, objectPose) : planning::ObjectBounds{};
   }
 
  private:
-  const PlanningScene* scene_ = nullptr;  // the scene the memory is of
+  std::shared_ptr<const TriangleMesh> mesh_;  // the object's
   Transform object_pose_ = Transform(Eigen::Matrix4d::Zero());
   std::vector<std::optional<Vector3>> last_;
   planning::ObjectBounds object_;
