@@ -21,6 +21,7 @@
 #include "graspkit/base/error.hpp"
 #include "graspkit/collision/collision.hpp"
 #include "graspkit/dataset/dataset_planning.hpp"
+#include "graspkit/dynamics/dynamics.hpp"
 #include "graspkit/io/dataset/grasp_dataset_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
 
@@ -105,6 +106,7 @@ ObjectProcess::ObjectProcess(const BatchOptions& options, const fs::path& object
                              const fs::path& out)
     : dataset_(out), limit_(options.objectTimeout), start_(Clock::now()) {
   loadedHand(options);  // before the fork, so that the child shares it
+  useOneBlasThread();   // before the fork, or each child restarts OpenBLAS's threads
   int channel[2];
   if (::pipe(channel) != 0) throw Error("batch: cannot create a pipe to an object's process");
   std::cout.flush();

@@ -1,5 +1,7 @@
 #include "dynamics/friction_contact_solver.hpp"
 
+#include "graspkit/dynamics/dynamics.hpp"
+
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/log.hpp"
 
@@ -40,6 +42,27 @@ extern "C" void numerics_warning(const char* function, const char* format, ...) 
   graspkit::trace(std::string("Siconos ") + (function ? function : "") + ": " + message);
 }
 
+namespace graspkit {
+
+// OpenBLAS (Debian's BLAS, behind Siconos) splits a product over threads of its own when it sees
+// more than one CPU, and the partial sums then round differently: a dataset's files came out
+// different under mpirun, where each rank is bound to one core, than from one process, and a
+// squeezed grasp's slips differed in the last digits. These problems are far too small to gain
+// from threads, so OpenBLAS is set to one thread before the first contact problem is solved
+// (process-wide: OpenBLAS 0.3.21 has no per-thread setting). Another BLAS has no such function,
+// and there is nothing to do. The flag is copied into a forked child, which then leaves OpenBLAS
+// alone: its setter would first restart the thread pool the fork shut down.
+void useOneBlasThread() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    using SetThreads = void (*)(int);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+      set(1);
+  });
+}
+
+}  // namespace graspkit
+
 namespace graspkit::dynamics {
 
 namespace {
@@ -51,22 +74,6 @@ constexpr int kSweepsBeforeNewton = 100;
 constexpr int kSiftedContacts = 8;
 // Rounds of sifting before the whole problem is solved.
 constexpr int kSiftRounds = 4;
-
-// OpenBLAS (Debian's BLAS, behind Siconos) splits a product over threads of its own when it sees
-// more than one CPU, and the partial sums then round differently: a dataset's files came out
-// different under mpirun, where each rank is bound to one core, than from one process, and a
-// squeezed grasp's slips differed in the last digits. These problems are far too small to gain
-// from threads, so OpenBLAS is set to one thread the first time a contact problem is solved
-// (process-wide: OpenBLAS 0.3.21 has no per-thread setting). Another BLAS has no such function,
-// and there is nothing to do.
-void useOneBlasThread() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    using SetThreads = void (*)(int);
-    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-      set(1);
-  });
-}
 
 struct OptionsDeleter {
   void operator()(SolverOptions* options) const { solver_options_delete(options); }

@@ -10,9 +10,15 @@
 #include "dynamics/friction_contact_solver.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <iterator>
 #include <vector>
+
+#include "graspkit/dynamics/dynamics.hpp"
 
 namespace graspkit::dynamics {
 namespace {
@@ -146,6 +152,28 @@ TEST(FrictionContactSolver, AContactLeftClosingJoinsAndStopsTheBlock) {
   EXPECT_NEAR(s.velocity[9], 0.0, 1e-9);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.reaction[3 * c], tripod[c], 1e-9 * tripod.sum());
   EXPECT_NEAR(s.reaction.tail(s.reaction.size() - 12).cwiseAbs().maxCoeff(), 0.0, 1e-12);
+}
+
+// A batch forks a worker per object. OpenBLAS shuts its thread pool down at a fork, and its
+// thread setter restarts the pool in the child, whose threads then spin for a tenth of a second
+// of CPU each: set in the parent before the fork, the worker solves on its one thread and never
+// starts them. (With one CPU, or another BLAS, there are no threads to start.)
+TEST(FrictionContactSolver, AWorkerForkedAfterTheBlasSettingStartsNoThreads) {
+  useOneBlasThread();
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const Problem problem = block(roomySides(21), Twist::Zero());
+    const FrictionContactSolution s =
+        solveFrictionContact(problem.W, problem.q, problem.mu, {}, 1e-12);
+    const auto threads = std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                                       std::filesystem::directory_iterator{});
+    ::_exit(s.solved ? static_cast<int>(std::min<std::ptrdiff_t>(threads, 100)) : 101);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1) << "threads in the worker (101: the problem was not solved)";
 }
 
 }  // namespace

@@ -73,6 +73,13 @@ StepReport step(World& world, double dt = kDefaultTimeStep);
 // set-point moves there at that velocity. Throws graspkit::Error for a bad robot index.
 void setClosingTargets(World& world, int robot);
 
+// Sets OpenBLAS, when it is the BLAS behind Siconos, to one thread for the whole process, so that
+// the contact problems' products round the same way however many CPUs the process sees (it does
+// nothing under another BLAS). step() calls it before its first problem. A program that forks
+// workers after loading the engine calls it before the fork: a worker that sets it itself
+// restarts OpenBLAS's thread pool, whose threads then spin for ~0.1 s of CPU each.
+void useOneBlasThread();
+
 // The world's dynamic state as JSON, as DynamicsError carries it.
 std::string dynamicStateJson(const World& world);
 
