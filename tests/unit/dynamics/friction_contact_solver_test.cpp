@@ -15,10 +15,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
+#include <string>
 #include <vector>
 
 #include "graspkit/dynamics/dynamics.hpp"
+#include "test_paths.hpp"
 
 namespace graspkit::dynamics {
 namespace {
@@ -174,6 +177,52 @@ TEST(FrictionContactSolver, AWorkerForkedAfterTheBlasSettingStartsNoThreads) {
   ASSERT_EQ(::waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 1) << "threads in the worker (101: the problem was not solved)";
+}
+
+// A real squeeze that stalls (stalled_squeeze.txt): uFactory's xArm gripper closed on a generated
+// object under validation, where Newton's method fails and NSGS, from its answer, stalls a little
+// above the tolerance. The finishing sweeps end once a round of them stops halving the residual
+// within 1e-5, well short of their limit, and the answer must meet Coulomb's law on its own
+// terms, checked here from W and q rather than by Siconos' residual: impulses inside the cones,
+// contacts not closing, and no push where a contact opens.
+TEST(FrictionContactSolver, AStalledSqueezeEndsEarlyWithinCoulombsLaw) {
+  std::ifstream in(test::sourceDir() / "tests/unit/dynamics/stalled_squeeze.txt");
+  ASSERT_TRUE(in) << "tests/unit/dynamics/stalled_squeeze.txt is missing";
+  std::string line;
+  while (in.peek() == '#') std::getline(in, line);
+  int count = 0, max_iterations = 0;
+  double tolerance = 0.0;
+  in >> count >> tolerance >> max_iterations;
+  const int rows = 3 * count;
+  MatrixX W(rows, rows);
+  VectorX q(rows), mu(count), start(rows);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < rows; ++j) in >> W(i, j);
+  for (int i = 0; i < rows; ++i) in >> q[i];
+  for (int i = 0; i < count; ++i) in >> mu[i];
+  for (int i = 0; i < rows; ++i) in >> start[i];
+  ASSERT_TRUE(in) << "stalled_squeeze.txt ends early";
+
+  const FrictionContactSolution s =
+      solveFrictionContact(W, q, mu, start, tolerance, max_iterations);
+  ASSERT_TRUE(s.solved);
+  EXPECT_GT(s.error, tolerance);  // it stalls: the rule under test decided where it ended
+  EXPECT_LT(s.error, 1e-5);
+  EXPECT_LT(s.iterations, max_iterations / 2);
+  // Coulomb's law, to a small share of the problem's scale: the largest impulse and |q|.
+  const VectorX u = W * s.reaction + q;
+  const double impulse = s.reaction.cwiseAbs().maxCoeff();
+  const double speed = q.cwiseAbs().maxCoeff();
+  ASSERT_GT(impulse, 0.0);
+  for (int c = 0; c < count; ++c) {
+    SCOPED_TRACE(c);
+    const double normal = s.reaction[3 * c];
+    EXPECT_GE(normal, -1e-6 * impulse);
+    EXPECT_LE(s.reaction.segment<2>(3 * c + 1).norm(), mu[c] * normal + 1e-6 * impulse);
+    EXPECT_GE(u[3 * c], -1e-4 * speed);  // not closing
+    // A contact that opens pushes with nothing.
+    if (u[3 * c] > 1e-3 * speed) EXPECT_LE(normal, 1e-4 * impulse);
+  }
 }
 
 }  // namespace
