@@ -20,6 +20,10 @@ AutoGraspResult RobotType::autoGrasp(World& world, int robot,
   return genericAutoGrasp(world, robot, options);
 }
 
+CloseMotion RobotType::closeMotion() const {
+  return CloseMotion::TowardClosingEnds;
+}
+
 IkResult inverseKinematics(const Robot& robot, const Transform& target, const IkRequest& request) {
   if (request.chain < 0 || request.chain >= static_cast<int>(robot.model().chains.size()))
     throw Error(fmt::format("robot '{}': inverse kinematics of chain {}, robot has {} chains",

@@ -9,11 +9,13 @@
 #include <map>
 #include <memory>
 
+#include "graspkit/collision/contact_search.hpp"
 #include "graspkit/grasp/autograsp.hpp"
 #include "graspkit/grasp/grasp.hpp"
 #include "graspkit/grasp/quality.hpp"
 #include "graspkit/model/body_ref.hpp"
 #include "graspkit/model/robot.hpp"
+#include "graspkit/planning/close_reach.hpp"
 #include "graspkit/planning/planning_scene.hpp"
 #include "graspkit/planning/search_energy.hpp"
 #include "graspkit/planning/search_state.hpp"
@@ -224,16 +226,27 @@ class GuidedPotentialQualityEnergy final : public SearchEnergy {
   NearestPoints cache_;
 };
 
-double autoGraspQuality(PlanningScene& scene) {
-  const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
-  const Grasp grasp = analyzeGrasp(scene.world(), scene.robot(), scene.object(),
-                                   contactsWith(closed.contacts, scene.object()));
+// The energy of the grasp the hand closes to. A close that cannot touch the object
+// (close_reach.hpp) is not run: its grasp has no contact, whatever else the fingers meet.
+double autoGraspQuality(PlanningScene& scene, std::optional<CloseReach>& reach) {
+  if (!reach || reach->model != scene.hand().modelPtr())
+    reach = closeReachOf(scene.hand().modelPtr());
+  std::vector<Contact> contacts;
+  if (closeMayTouchObject(scene, *reach, ContactRequest{}.threshold)) {
+    const AutoGraspResult closed = autoGrasp(scene.world(), scene.robot());
+    contacts = contactsWith(closed.contacts, scene.object());
+  }
+  const Grasp grasp =
+      analyzeGrasp(scene.world(), scene.robot(), scene.object(), std::move(contacts));
   return -(kVolumeWeight * grasp.volume + kEpsilonWeight * std::max(grasp.epsilon, 0.0));
 }
 
 class AutoGraspQualityEnergy final : public SearchEnergy {
  public:
-  double evaluate(PlanningScene& scene) override { return autoGraspQuality(scene); }
+  double evaluate(PlanningScene& scene) override { return autoGraspQuality(scene, reach_); }
+
+ private:
+  std::optional<CloseReach> reach_;
 };
 
 class StrictAutoGraspEnergy final : public SearchEnergy {
@@ -248,9 +261,12 @@ class StrictAutoGraspEnergy final : public SearchEnergy {
         std::any_of(moved.contacts.begin(), moved.contacts.end(),
                     [&](const Contact& c) { return c.body1 == BodyRef::robotBase(scene.robot()); });
     if (!palmTouches) scene.world().setRobotPose(scene.robot(), start);
-    const double quality = autoGraspQuality(scene);
+    const double quality = autoGraspQuality(scene, reach_);
     return quality == 0.0 ? kUnevaluatedEnergy : quality;
   }
+
+ private:
+  std::optional<CloseReach> reach_;
 };
 
 template <typename E>

@@ -85,6 +85,9 @@ class Pr2Gripper2010 final : public graspkit::RobotType {
     return second;
   }
 
+  // The second close holds a fingertip still and moves the base after it.
+  graspkit::CloseMotion closeMotion() const override { return graspkit::CloseMotion::Unknown; }
+
  private:
   // The second closing: `tip` is held still in the world (the base follows it) and ignored by
   // collision detection, as it already rests on the object.

@@ -79,6 +79,11 @@ class RobotIQ final : public graspkit::RobotType {
     for (int chain = 0; chain < 3; ++chain) model.disableCollision(LinkRef{}, LinkRef{chain, 1});
   }
 
+  // Phalanx by phalanx, some DOFs first toward their minimum: within the limits, not one way.
+  graspkit::CloseMotion closeMotion() const override {
+    return graspkit::CloseMotion::WithinDofLimits;
+  }
+
   AutoGraspResult autoGrasp(World& world, int robot,
                             const AutoGraspOptions& options) const override {
     const graspkit::RobotModel& model = world.robot(robot).model();

@@ -147,7 +147,7 @@ TEST_P(BrokenPlugin, IsRefusedWithAnErrorNamingTheFileAndRegistersNothing) {
 INSTANTIATE_TEST_SUITE_P(
     Corpus, BrokenPlugin,
     ::testing::Values(
-        BrokenCase{"wrong_abi.so", "built for plugin ABI 999, this engine loads ABI 2",
+        BrokenCase{"wrong_abi.so", "built for plugin ABI 999, this engine loads ABI 3",
                    "WrongAbiType"},
         BrokenCase{"wrong_size.so", "descriptor size", "WrongSizeType"},
         BrokenCase{"no_symbol.so", "not a graspkit plugin: no symbol graspkit_plugin_v1", ""},
@@ -332,7 +332,7 @@ TEST(PluginProbe, OnlyThePluginProvidingTheNameIsLoaded) {
   for (const PluginInfo& info : registry.plugins().loaded()) loaded.push_back(info.name);
   EXPECT_EQ(loaded, std::vector<std::string>{"corpus_good"});
   EXPECT_EQ(failureOf(registry, "wrong_abi.so"),
-            "built for plugin ABI 999, this engine loads ABI 2");
+            "built for plugin ABI 999, this engine loads ABI 3");
   EXPECT_FALSE(registry.contains(FactoryKind::QualityMeasure, "corpus_throws_std"));
   EXPECT_TRUE(registry.plugins().loadProviding(FactoryKind::QualityMeasure, "corpus_throws_std"));
   EXPECT_EQ(registry.plugins().loaded().size(), 2u);

@@ -13,6 +13,17 @@ class Robot;
 struct RobotModel;
 class World;
 
+// What a close moves. The looser the promise, the fewer closes a planner can rule out unrun.
+enum class CloseMotion {
+  // Each DOF from its value toward the end its default velocity points to (one with no velocity
+  // stays), within its limits; the palm stays still. The engine's close.
+  TowardClosingEnds,
+  // The DOFs anywhere within their limits; the palm stays still.
+  WithinDofLimits,
+  // Anything, the palm too: no close is ruled out.
+  Unknown,
+};
+
 class RobotType {
  public:
   virtual ~RobotType() = default;
@@ -27,8 +38,13 @@ class RobotType {
   virtual IkResult inverseKinematics(const Robot& robot, const Transform& target,
                                      const IkRequest& request) const;
 
-  // Closes the hand. The default is the engine's autoGrasp (genericAutoGrasp).
+  // Closes the hand. The default is the engine's autoGrasp (genericAutoGrasp). A type that
+  // overrides it says what its close moves in closeMotion().
   virtual AutoGraspResult autoGrasp(World& world, int robot, const AutoGraspOptions& options) const;
+
+  // What autoGrasp() moves, for planners that skip closes which cannot reach the object
+  // (planning/close_reach.hpp). The default is the engine's close: TowardClosingEnds.
+  virtual CloseMotion closeMotion() const;
 };
 
 // Dispatches to the robot's type (closed form where it has one), else the iterative solver.

@@ -11,7 +11,9 @@
 //                             GraspIt!'s merged qhull hull (they differ only on near-degenerate
 //                             wrench sets, and nothing compares this energy with GraspIt!'s)
 //   guided-potential-quality  potential quality where it is <= 0, contact energy elsewhere
-//   autograsp-quality         close the hand, then -(30 volume + 100 max(epsilon, 0))
+//   autograsp-quality         close the hand, then -(30 volume + 100 max(epsilon, 0)); a
+//                             close that cannot touch the object (close_reach.hpp) is not
+//                             run: its grasp has no contact, so the energy is -0
 //   strict-autograsp          approach up to 30 mm keeping the pose only if the palm touches,
 //                             then autograsp quality; 0 becomes 1e8
 //

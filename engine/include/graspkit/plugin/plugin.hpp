@@ -20,7 +20,8 @@ class Registrar;
 // Bump when anything a plugin sees changes layout: this descriptor, Registrar, RobotType,
 // RobotModel, QualityMeasure, SearchEnergy, Planner and the planning structs.
 // 2: Registrar gained addSearchEnergy and addPlanner.
-#define GRASPKIT_PLUGIN_ABI_VERSION 2u
+// 3: RobotType gained closeMotion.
+#define GRASPKIT_PLUGIN_ABI_VERSION 3u
 #define GRASPKIT_PLUGIN_SYMBOL "graspkit_plugin_v1"
 
 extern "C" {
