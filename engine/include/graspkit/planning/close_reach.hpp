@@ -7,7 +7,8 @@
 // The bound. A close moves only the DOFs, each within an interval (RobotType::closeMotion: from
 // its value toward its closing end, or anywhere within its limits), so every joint of a chain
 // stays within an interval too: one box in the chain's joint space holds every posture the
-// close can pass through, whatever stops it. Over a box, each link's bounding ball moves away
+// close can pass through, whatever stops it. Each link is held by a few balls (its vertices
+// split across their box's longest side, twice). Over a box, each ball moves away
 // from where it is at the box's centre by at most sum_j half-width_j * lever_j, where lever_j
 // bounds the ball centre's distance from the axis of revolute joint j (the DH translations from
 // that joint to the link, plus the centre's offset in the link frame) and is 1 for a prismatic
@@ -30,14 +31,15 @@ struct RobotModel;
 
 // What the bound needs of a hand model, computed once per model.
 struct CloseReach {
+  // A ball holding part of a link's mesh (a link without triangles has none: it cannot touch).
   struct LinkBall {
-    bool present = false;              // a link without triangles cannot touch anything
+    std::size_t link = 0;              // chain-local
     Vector3 centre = Vector3::Zero();  // in the link's body frame
     double radius = 0.0;
     std::vector<double> levers;  // per chain-local joint; 0 past the link's last joint
   };
   std::shared_ptr<const RobotModel> model;
-  std::vector<std::vector<LinkBall>> chains;  // [chain][link]
+  std::vector<std::vector<LinkBall>> chains;  // [chain]: every ball of its links
   Vector3 palmCentre = Vector3::Zero();
   double palmRadius = -1.0;  // negative: the palm has no triangles
 };
