@@ -167,32 +167,33 @@ TEST(FindContacts, TwoStagesGiveTheContactsOfOneSearch) {
     upper.setPose(pose);
     const BodyRef a = BodyRef::body(world.addBody(lower));
     const BodyRef b = BodyRef::body(world.addBody(upper));
-    for (const double threshold : {0.45, 1.3, 2.0}) {
-      for (const bool touching : {false, true}) {
-        ContactRequest two_stages;
-        two_stages.threshold = threshold;
-        two_stages.graspitDuplicates = false;
-        two_stages.softContacts = false;
-        two_stages.compact = trial % 2 == 0;
-        two_stages.touchingIsContact = touching;
-        const ContactResult one =
-            collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/false);
-        const ContactResult two =
-            collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/true);
-        EXPECT_EQ(one.interpenetrating, two.interpenetrating);
-        ASSERT_EQ(one.contacts.size(), two.contacts.size()) << threshold;
-        for (std::size_t i = 0; i < one.contacts.size(); ++i) {
-          EXPECT_EQ(one.contacts[i].position1, two.contacts[i].position1) << i;
-          EXPECT_EQ(one.contacts[i].position2, two.contacts[i].position2) << i;
-          EXPECT_EQ(one.contacts[i].normal, two.contacts[i].normal) << i;
-        }
-        ++compared;
-        if (!one.contacts.empty()) ++with_contacts;
-        if (one.interpenetrating) ++crossing;
+    // One threshold a trial, drawn so that each threshold meets flat and bumpy sheets, either
+    // size and either compaction (the whole product cost 5 minutes under the sanitizers).
+    const double threshold = std::array{0.45, 1.3, 2.0}[(trial + trial / 4) % 3];
+    for (const bool touching : {false, true}) {
+      ContactRequest two_stages;
+      two_stages.threshold = threshold;
+      two_stages.graspitDuplicates = false;
+      two_stages.softContacts = false;
+      two_stages.compact = trial % 2 == 0;
+      two_stages.touchingIsContact = touching;
+      const ContactResult one =
+          collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/false);
+      const ContactResult two =
+          collision::findContactsInStages(world, a, b, two_stages, /*two_stages=*/true);
+      EXPECT_EQ(one.interpenetrating, two.interpenetrating);
+      ASSERT_EQ(one.contacts.size(), two.contacts.size()) << threshold;
+      for (std::size_t i = 0; i < one.contacts.size(); ++i) {
+        EXPECT_EQ(one.contacts[i].position1, two.contacts[i].position1) << i;
+        EXPECT_EQ(one.contacts[i].position2, two.contacts[i].position2) << i;
+        EXPECT_EQ(one.contacts[i].normal, two.contacts[i].normal) << i;
       }
+      ++compared;
+      if (!one.contacts.empty()) ++with_contacts;
+      if (one.interpenetrating) ++crossing;
     }
   }
-  EXPECT_EQ(compared, 16 * 3 * 2);
+  EXPECT_EQ(compared, 16 * 2);
   EXPECT_GT(with_contacts, compared / 2);  // the trials touch, mostly
   EXPECT_GT(crossing, 0);                  // and some cross
 }
