@@ -167,6 +167,92 @@ class DenseMemory {
   }
 };
 
+// A query triangle and a target triangle that may come within the threshold of each other.
+struct NearPair {
+  unsigned query;
+  unsigned target;
+};
+
+std::vector<NearPair>& nearPairsMemory() {
+  thread_local std::vector<NearPair> pairs;
+  return pairs;
+}
+
+// The tests' choice of where candidates come from (collision::setCandidatesFromTarget).
+std::optional<bool>& candidatesFromTarget() {
+  thread_local std::optional<bool> chosen;
+  return chosen;
+}
+
+// Whether to find each query triangle's near target triangles from the target's side. Embree
+// finds the target triangles around a ball holding the query triangle; when the query's
+// triangles are much larger than the target's (a hand link's against a mug's), that ball holds
+// dozens of target triangles that the query triangle's box then sifts out. Each target triangle
+// asking for the query triangles around its own, smaller, ball visits fewer. Only where the
+// candidates come from changes: each query triangle still meets every target triangle within
+// the threshold, in the same order, so the contacts are the same.
+bool nearFromTarget(const raycast::EmbreeMesh& query, const raycast::EmbreeMesh& target) {
+  return candidatesFromTarget().value_or(query.meanTriangleSize() >
+                                         2.0 * target.meanTriangleSize());
+}
+
+// The pairs of query and target triangles whose balls (each triangle's smallest, grown by the
+// threshold on one side) meet, in nearPairsMemory() in order of query, then target triangle.
+// Every pair of triangles within the threshold of each other is among them: the target
+// triangle lies in its ball, and the query triangle then within the threshold of that ball.
+void pairsNearFromTarget(const raycast::EmbreeMesh& query, const Transform& query_to_target,
+                         const raycast::EmbreeMesh& target, double threshold) {
+  std::vector<NearPair>& pairs = nearPairsMemory();
+  pairs.clear();
+  // Each query triangle's box in the target's frame, grown by the threshold, as the search
+  // computes it: a pair whose boxes miss each other is sifted out here rather than sorted.
+  const TriangleMesh& query_mesh = query.mesh();
+  thread_local std::vector<Vector3> moved_memory;
+  thread_local std::vector<Eigen::AlignedBox3d> query_boxes_memory;
+  std::vector<Vector3>& moved = moved_memory;
+  std::vector<Eigen::AlignedBox3d>& query_boxes = query_boxes_memory;
+  moved.resize(query_mesh.vertices.size());
+  for (std::size_t v = 0; v < moved.size(); ++v)
+    moved[v] = query_to_target * query_mesh.vertices[v];
+  query_boxes.resize(query_mesh.triangles.size());
+  for (std::size_t q = 0; q < query_boxes.size(); ++q) {
+    const auto& corners = query_mesh.triangles[q];
+    Eigen::AlignedBox3d box(moved[corners[0]]);
+    box.extend(moved[corners[1]]).extend(moved[corners[2]]);
+    box.min().array() -= threshold;
+    box.max().array() += threshold;
+    query_boxes[q] = box;
+  }
+  const TriangleMesh& target_mesh = target.mesh();
+  const Transform target_to_query = query_to_target.inverse();
+  // The query's box grown by the threshold, seen from the target's frame, passes over the
+  // target triangles that cannot come near it (a micrometre more for the transforms' rounding).
+  Eigen::AlignedBox3d reach = query.bounds();
+  reach.min().array() -= threshold;
+  reach.max().array() += threshold;
+  Eigen::AlignedBox3d reach_in_target = transformedBox(reach, query_to_target);
+  reach_in_target.min().array() -= 1e-3;
+  reach_in_target.max().array() += 1e-3;
+  for (std::size_t t = 0; t < target_mesh.triangles.size(); ++t) {
+    if (!target.triangleBox(static_cast<unsigned>(t)).intersects(reach_in_target)) continue;
+    const auto& corners = target_mesh.triangles[t];
+    const Triangle moved_target = {target_to_query * target_mesh.vertices[corners[0]],
+                                   target_to_query * target_mesh.vertices[corners[1]],
+                                   target_to_query * target_mesh.vertices[corners[2]]};
+    Eigen::AlignedBox3d box(moved_target.a);
+    box.extend(moved_target.b).extend(moved_target.c);
+    if (!box.intersects(reach)) continue;
+    const Ball ball = enclosingBall(moved_target);
+    const Eigen::AlignedBox3d& target_box = target.triangleBox(static_cast<unsigned>(t));
+    query.forEachTriangleNear(ball.center, ball.radius + threshold, [&](unsigned q) {
+      if (query_boxes[q].intersects(target_box)) pairs.push_back({q, static_cast<unsigned>(t)});
+    });
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const NearPair& a, const NearPair& b) {
+    return a.query != b.query ? a.query < b.query : a.target < b.target;
+  });
+}
+
 // Raw contacts between `query` (moved into the frame of `target` by `query_to_target`) and
 // `target`, as point pairs (on query, on target) in the target's frame. Returns whether some
 // triangle pairs cross.
@@ -174,6 +260,8 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
                  std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs,
                  const SurvivorCover* cover = nullptr) {
+  const bool from_target = nearFromTarget(query_surface, target);
+  if (from_target) pairsNearFromTarget(query_surface, query_to_target, target, threshold);
   const TriangleMesh& query = query_surface.mesh();
   const TriangleMesh& target_mesh = target.mesh();
   Eigen::AlignedBox3d reach = target.bounds();
@@ -206,7 +294,15 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
 
   bool intersecting = false;
   const double threshold_sq = threshold * threshold;
+  const std::vector<NearPair>& near_pairs = nearPairsMemory();
+  std::size_t pair_begin = 0, pair_end = 0;  // near_pairs of the query triangle q
   for (std::size_t q = 0; q < query.triangles.size(); ++q) {
+    if (from_target) {  // on to the next query triangle that some target triangle found
+      if (pair_end == near_pairs.size()) break;
+      pair_begin = pair_end;
+      q = near_pairs[pair_begin].query;
+      while (pair_end < near_pairs.size() && near_pairs[pair_end].query == q) ++pair_end;
+    }
     if (!query_surface.triangleBox(static_cast<unsigned>(q)).intersects(reach_in_query)) continue;
     const auto& corners = query.triangles[q];
     const Triangle tq = {query_to_target * query.vertices[corners[0]],
@@ -229,7 +325,7 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
     box.max().array() += threshold;
     // Embree finds the triangles near the query's bounding sphere; their boxes sift them.
     candidates.clear();
-    target.forEachTriangleNear(ball.center, ball.radius + threshold, [&](unsigned t) {
+    auto sift = [&](unsigned t) {
       const Eigen::AlignedBox3d& near_box = target.triangleBox(t);
       if (!box.intersects(near_box)) return;
       if (has_plane) {
@@ -240,7 +336,13 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
           return;
       }
       candidates.push_back(t);
-    });
+    };
+    if (from_target) {
+      for (std::size_t i = pair_begin; i < pair_end; ++i) sift(near_pairs[i].target);
+    } else {
+      target.forEachTriangleNear(ball.center, ball.radius + threshold,
+                                 [&](unsigned t) { sift(t); });
+    }
     // Embree's traversal order is not part of its contract; contacts must not depend on it, so
     // the few candidates that give contacts are put in triangle order (sorting them all would
     // cost more than testing them).
@@ -450,6 +552,10 @@ bool surfacesWithin(const World& world, const BodyRef& body1, const BodyRef& bod
   const bool crossing = searchPairs(*search.query, search.query_to_target, *search.target, distance,
                                     false, raw, SearchEnd::FirstContactOrCrossing);
   return crossing || !raw.empty();
+}
+
+void collision::setCandidatesFromTarget(std::optional<bool> from_target) {
+  candidatesFromTarget() = from_target;
 }
 
 ContactResult findContacts(const World& world, const BodyRef& body1, const BodyRef& body2,

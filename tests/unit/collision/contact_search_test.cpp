@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -196,6 +197,91 @@ TEST(FindContacts, TwoStagesGiveTheContactsOfOneSearch) {
   EXPECT_EQ(compared, 16 * 2);
   EXPECT_GT(with_contacts, compared / 2);  // the trials touch, mostly
   EXPECT_GT(crossing, 0);                  // and some cross
+}
+
+// Sets where the search finds each query triangle's candidate target triangles, for as long as
+// it lives.
+class CandidatesFrom {
+ public:
+  explicit CandidatesFrom(bool target) { collision::setCandidatesFromTarget(target); }
+  ~CandidatesFrom() { collision::setCandidatesFromTarget(std::nullopt); }
+};
+
+// The contacts of `a` and `b` with each query triangle's candidates found from the target's
+// triangles and from the query triangle's own ball: the same, bit for bit and in order.
+// Returns whether there were any.
+bool sameContactsFromEitherSide(const World& world, const BodyRef& a, const BodyRef& b,
+                                const ContactRequest& request) {
+  ContactResult from_target, from_query;
+  {
+    CandidatesFrom chosen(true);
+    from_target = findContacts(world, a, b, request);
+  }
+  {
+    CandidatesFrom chosen(false);
+    from_query = findContacts(world, a, b, request);
+  }
+  EXPECT_EQ(from_target.interpenetrating, from_query.interpenetrating);
+  EXPECT_EQ(from_target.contacts.size(), from_query.contacts.size());
+  for (std::size_t i = 0; i < std::min(from_target.contacts.size(), from_query.contacts.size());
+       ++i) {
+    EXPECT_EQ(from_target.contacts[i].position1, from_query.contacts[i].position1) << i;
+    EXPECT_EQ(from_target.contacts[i].position2, from_query.contacts[i].position2) << i;
+    EXPECT_EQ(from_target.contacts[i].normal, from_query.contacts[i].normal) << i;
+  }
+  return !from_query.contacts.empty();
+}
+
+// GraspIt!'s Barrett around its mug: the links' triangles are 2.4-3.5 times the mug's, so the
+// search finds their candidates from the mug's triangles; from the links' own balls, it finds
+// the same contacts, with GraspIt!'s duplicates, with touching counted and with a wider
+// threshold.
+TEST(FindContacts, CandidatesFromEitherSideAroundGraspItsMug) {
+  GRASPKIT_REQUIRE_SHARED();
+  World world = loadWorldFile(*test::graspitDataDir() / "worlds" / "plannerMug.xml");
+  const Transform mug_pose = bodyPose(world, BodyRef::body(0));
+  ContactRequest graspit, touching, wide;
+  touching.touchingIsContact = true;
+  wide.threshold = 2.0;
+  wide.graspitDuplicates = false;
+  std::mt19937 random(17);
+  int with_contacts = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    SCOPED_TRACE(trial);
+    test::placeHandRandomlyNear(world, mug_pose.translation(), random);
+    for (const BodyRef& link : worldBodies(world)) {
+      if (!link.isLink()) continue;
+      for (const ContactRequest* request : {&graspit, &touching, &wide})
+        with_contacts += sameContactsFromEitherSide(world, link, BodyRef::body(0), *request);
+    }
+  }
+  EXPECT_GT(with_contacts, 200);  // of 1,350 searches
+}
+
+// A coarse bumpy sheet on a dense one, each searched from either side.
+TEST(FindContacts, CandidatesFromEitherSideCoarseOnDense) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int with_contacts = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    SCOPED_TRACE(trial);
+    World world;
+    Body lower = denseSheet("lower", 24, 0.06, true, random);
+    Body upper = denseSheet("upper", 3 + trial % 3, 0.3, false, random);
+    Transform pose = Transform::Identity();
+    pose.translation() = Vector3(3.0 * unit(random), 3.0 * unit(random), 0.4 + 0.3 * unit(random));
+    pose.rotate(Eigen::AngleAxisd(0.05 * unit(random), Vector3::UnitX()));
+    pose.rotate(Eigen::AngleAxisd(0.5 * unit(random), Vector3::UnitZ()));
+    upper.setPose(pose);
+    const BodyRef a = BodyRef::body(world.addBody(lower));
+    const BodyRef b = BodyRef::body(world.addBody(upper));
+    ContactRequest request;
+    request.threshold = 1.0;
+    request.touchingIsContact = trial % 2 == 0;
+    with_contacts += sameContactsFromEitherSide(world, a, b, request);
+    with_contacts += sameContactsFromEitherSide(world, b, a, request);
+  }
+  EXPECT_GT(with_contacts, 16);  // of 24
 }
 
 TEST(FindContacts, FacingSquaresAPointOneApart) {
