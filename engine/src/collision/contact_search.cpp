@@ -31,6 +31,19 @@ Triangle triangleOf(const TriangleMesh& mesh, std::size_t index,
   return {vertices[t[0]], vertices[t[1]], vertices[t[2]]};
 }
 
+// Triangle `index` of `mesh` moved by `transform`.
+Triangle movedTriangle(const TriangleMesh& mesh, std::size_t index, const Transform& transform) {
+  const auto& t = mesh.triangles[index];
+  return {transform * mesh.vertices[t[0]], transform * mesh.vertices[t[1]],
+          transform * mesh.vertices[t[2]]};
+}
+
+Eigen::AlignedBox3d boxOf(const Triangle& t) {
+  Eigen::AlignedBox3d box(t.a);
+  box.extend(t.b).extend(t.c);
+  return box;
+}
+
 // Bounds of a mesh's local box seen from another frame.
 Eigen::AlignedBox3d transformedBox(const Eigen::AlignedBox3d& box, const Transform& transform) {
   Eigen::AlignedBox3d out;
@@ -235,13 +248,8 @@ void pairsNearFromTarget(const raycast::EmbreeMesh& query, const Transform& quer
   reach_in_target.max().array() += 1e-3;
   for (std::size_t t = 0; t < target_mesh.triangles.size(); ++t) {
     if (!target.triangleBox(static_cast<unsigned>(t)).intersects(reach_in_target)) continue;
-    const auto& corners = target_mesh.triangles[t];
-    const Triangle moved_target = {target_to_query * target_mesh.vertices[corners[0]],
-                                   target_to_query * target_mesh.vertices[corners[1]],
-                                   target_to_query * target_mesh.vertices[corners[2]]};
-    Eigen::AlignedBox3d box(moved_target.a);
-    box.extend(moved_target.b).extend(moved_target.c);
-    if (!box.intersects(reach)) continue;
+    const Triangle moved_target = movedTriangle(target_mesh, t, target_to_query);
+    if (!boxOf(moved_target).intersects(reach)) continue;
     const Ball ball = enclosingBall(moved_target);
     const Eigen::AlignedBox3d& target_box = target.triangleBox(static_cast<unsigned>(t));
     query.forEachTriangleNear(ball.center, ball.radius + threshold, [&](unsigned q) {
@@ -304,12 +312,8 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
       while (pair_end < near_pairs.size() && near_pairs[pair_end].query == q) ++pair_end;
     }
     if (!query_surface.triangleBox(static_cast<unsigned>(q)).intersects(reach_in_query)) continue;
-    const auto& corners = query.triangles[q];
-    const Triangle tq = {query_to_target * query.vertices[corners[0]],
-                         query_to_target * query.vertices[corners[1]],
-                         query_to_target * query.vertices[corners[2]]};
-    Eigen::AlignedBox3d box(tq.a);
-    box.extend(tq.b).extend(tq.c);
+    const Triangle tq = movedTriangle(query, q, query_to_target);
+    Eigen::AlignedBox3d box = boxOf(tq);
     if (!box.intersects(reach)) continue;
     if (cover && cover->coversQuery(tq)) continue;
     const Ball ball = enclosingBall(tq);
