@@ -238,22 +238,24 @@ void pairsNearFromTarget(const raycast::EmbreeMesh& query, const Transform& quer
   }
   const TriangleMesh& target_mesh = target.mesh();
   const Transform target_to_query = query_to_target.inverse();
-  // The query's box grown by the threshold, seen from the target's frame, passes over the
-  // target triangles that cannot come near it (a micrometre more for the transforms' rounding).
+  // Embree finds the target triangles near a ball holding the query's box grown by the
+  // threshold (so a dense scan costs what its part near the query costs, not its size); the
+  // box itself, seen from the query's frame, passes over the rest.
   Eigen::AlignedBox3d reach = query.bounds();
   reach.min().array() -= threshold;
   reach.max().array() += threshold;
-  Eigen::AlignedBox3d reach_in_target = transformedBox(reach, query_to_target);
-  reach_in_target.min().array() -= 1e-3;
-  reach_in_target.max().array() += 1e-3;
-  for (std::size_t t = 0; t < target_mesh.triangles.size(); ++t) {
-    if (!target.triangleBox(static_cast<unsigned>(t)).intersects(reach_in_target)) continue;
+  thread_local std::vector<unsigned> near_target_memory;
+  std::vector<unsigned>& near_target = near_target_memory;
+  near_target.clear();
+  target.forEachTriangleNear(query_to_target * reach.center(), 0.5 * reach.diagonal().norm(),
+                             [&](unsigned t) { near_target.push_back(t); });
+  for (const unsigned t : near_target) {
     const Triangle moved_target = movedTriangle(target_mesh, t, target_to_query);
     if (!boxOf(moved_target).intersects(reach)) continue;
     const Ball ball = enclosingBall(moved_target);
-    const Eigen::AlignedBox3d& target_box = target.triangleBox(static_cast<unsigned>(t));
+    const Eigen::AlignedBox3d& target_box = target.triangleBox(t);
     query.forEachTriangleNear(ball.center, ball.radius + threshold, [&](unsigned q) {
-      if (query_boxes[q].intersects(target_box)) pairs.push_back({q, static_cast<unsigned>(t)});
+      if (query_boxes[q].intersects(target_box)) pairs.push_back({q, t});
     });
   }
   std::sort(pairs.begin(), pairs.end(), [](const NearPair& a, const NearPair& b) {
