@@ -270,7 +270,8 @@ bool searchPairs(const raycast::EmbreeMesh& query_surface, const Transform& quer
                  const raycast::EmbreeMesh& target, double threshold, bool touching_is_contact,
                  std::vector<RawContact>& out, SearchEnd end = SearchEnd::AllPairs,
                  const SurvivorCover* cover = nullptr) {
-  const bool from_target = nearFromTarget(query_surface, target);
+  // A search that stops at its first contact would pay for every pair up front.
+  const bool from_target = end == SearchEnd::AllPairs && nearFromTarget(query_surface, target);
   if (from_target) pairsNearFromTarget(query_surface, query_to_target, target, threshold);
   const TriangleMesh& query = query_surface.mesh();
   const TriangleMesh& target_mesh = target.mesh();
