@@ -110,7 +110,7 @@ int dofLimits(lua_State* L) {
   return 1;
 }
 
-int pose(lua_State* L) {
+int robotPose(lua_State* L) {
   pushPose(L, robotOf(toRobot(L, 1)).pose());
   return 1;
 }
@@ -524,7 +524,7 @@ void registerRobotClass(lua_State* L) {
       {"dofs", guarded<dofs>},
       {"set_dofs", guarded<setDofs>},
       {"dof_limits", guarded<dofLimits>},
-      {"pose", guarded<pose>},
+      {"pose", guarded<robotPose>},
       {"set_pose", guarded<setPose>},
       {"chain_count", guarded<chainCount>},
       {"link_poses", guarded<linkPoses>},

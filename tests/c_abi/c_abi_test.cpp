@@ -22,16 +22,17 @@ namespace fs = std::filesystem;
 using graspkit::test::modelsDir;
 using graspkit::test::scratchDir;
 
-namespace {
-
-constexpr double kInf = INFINITY;
-
-// A world handle freed at scope exit.
+// A world handle freed at scope exit. Not in the anonymous namespace: the CAbiPlannerMug fixture
+// holds one.
 struct WorldPtr {
   graspkit_world* w = nullptr;
   ~WorldPtr() { graspkit_world_free(w); }
   operator graspkit_world*() const { return w; }
 };
+
+namespace {
+
+constexpr double kInf = INFINITY;
 
 std::string lastError() {
   return graspkit_last_error();

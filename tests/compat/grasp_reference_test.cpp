@@ -22,11 +22,11 @@ namespace {
 using nlohmann::json;
 
 constexpr double kDofTolerance = 1e-6;
-constexpr double kPositionTolerance = 0.01;  // mm
+constexpr double kContactPositionTolerance = 0.01;  // mm
 constexpr double kNormalTolerance = 1e-4;
 constexpr double kRelativeTolerance = 0.01;
 
-World plannerMug() {
+World plannerMugWorld() {
   return loadWorldFile(*test::graspitDataDir() / "worlds" / "plannerMug.xml");
 }
 
@@ -69,7 +69,7 @@ Grasp checkAutoGrasp(World& world, const json& reference) {
     for (std::size_t i = 0; i < grasp.contacts.size() && !matched; ++i) {
       const Contact& c = grasp.contacts[i];
       if (used[i] || bodyName(world, c.body1) != link) continue;
-      if ((c.position1 - position).norm() > kPositionTolerance) continue;
+      if ((c.position1 - position).norm() > kContactPositionTolerance) continue;
       if ((c.normal - normal).norm() > kNormalTolerance) continue;
       used[i] = matched = true;
       EXPECT_NEAR(c.mu, expected.at("cof_static").get<double>(), 1e-12) << link;
@@ -85,7 +85,7 @@ Grasp checkAutoGrasp(World& world, const json& reference) {
 
 TEST(GraspReference, PlannerMugAsLoaded) {
   GRASPKIT_REQUIRE_SHARED();
-  World world = plannerMug();
+  World world = plannerMugWorld();
   const json& reference = grasps().at("plannerMug_as_loaded").at("autograsp");
   const Grasp grasp = checkAutoGrasp(world, reference);
   EXPECT_EQ(reference.at("epsilon_L1").get<double>(), -1.0);
@@ -95,7 +95,7 @@ TEST(GraspReference, PlannerMugAsLoaded) {
 
 // The force-closure case: pose and DOFs set first, as GraspIt!'s script did.
 World forceClosureStart(const json& entry) {
-  World world = plannerMug();
+  World world = plannerMugWorld();
   world.setRobotPose(0, test::jsonPose(entry.at("hand_pose_before")));
   const auto dofs = entry.at("hand_dofs_before").get<std::vector<double>>();
   world.setDofValues(0, dofs);

@@ -39,10 +39,10 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
-struct ModelDeleter {
+struct MjModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
 };
-struct DataDeleter {
+struct MjDataDeleter {
   void operator()(mjData* d) const { mj_deleteData(d); }
 };
 
@@ -205,8 +205,8 @@ class MenagerieHand {
  private:
   fs::path file_;
   std::shared_ptr<const RobotModel> model_;
-  std::unique_ptr<mjModel, ModelDeleter> m_;
-  std::unique_ptr<mjData, DataDeleter> d_;
+  std::unique_ptr<mjModel, MjModelDeleter> m_;
+  std::unique_ptr<mjData, MjDataDeleter> d_;
   std::string error_;
   std::vector<Transform> rest_;
   std::map<std::string, LinkRef> links_;

@@ -21,7 +21,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kPageStart = R"page(<!doctype html>
+constexpr const char* kEditorPageStart = R"page(<!doctype html>
 <html lang="en">
 <head>
 <meta charset="utf-8">
@@ -51,7 +51,7 @@ constexpr const char* kPageStart = R"page(<!doctype html>
 <script>
 )page";
 
-constexpr const char* kPageEnd = "</script>\n</body>\n</html>\n";
+constexpr const char* kEditorPageEnd = "</script>\n</body>\n</html>\n";
 
 bool sameText(const std::string& a, const std::string& b) {
   // Compared in time that does not depend on where they differ.
@@ -178,7 +178,7 @@ int serveEditor(EditorSession& session, const ServerOptions& options, std::ostre
     res.set_header("Content-Security-Policy",
                    "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
                    "connect-src 'self'; img-src 'self' blob: data:");
-    res.set_content(std::string(kPageStart) + kEditorScript + kPageEnd, "text/html");
+    res.set_content(std::string(kEditorPageStart) + kEditorScript + kEditorPageEnd, "text/html");
   });
   server.Get("/api/scene.glb", [&](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] { res.set_content(session.sceneGltf(), "model/gltf-binary"); });

@@ -16,10 +16,11 @@ namespace graspkit {
 using raycast::EmbreeMesh;
 using raycast::toEmbreeFloat;
 
-namespace {
+namespace raycast {
 
 // One body of the scene: an Embree instance of its mesh's shared scene. The double poses are
-// kept beside Embree's float copy so results are computed in double.
+// kept beside Embree's float copy so results are computed in double. Outside the anonymous
+// namespace because RayScene::Impl, which has external linkage, holds them.
 struct Instance {
   BodyRef body;
   std::shared_ptr<const EmbreeMesh> mesh;
@@ -27,6 +28,12 @@ struct Instance {
   Transform pose = Transform::Identity();
   Transform inverse = Transform::Identity();
 };
+
+}  // namespace raycast
+
+using raycast::Instance;
+
+namespace {
 
 // Embree's RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR: the three rotation columns, then the translation.
 void setInstancePose(RTCGeometry geometry, const Transform& pose) {

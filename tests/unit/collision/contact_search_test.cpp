@@ -30,10 +30,10 @@
 namespace graspkit {
 namespace {
 
-constexpr double kTol = 1e-9;
+constexpr double kSearchTolerance = 1e-9;
 
 // A cube of side 20 mm centred on its origin, triangles counter-clockwise seen from outside.
-std::shared_ptr<const TriangleMesh> cubeMesh() {
+std::shared_ptr<const TriangleMesh> unitCubeMesh() {
   auto mesh = std::make_shared<TriangleMesh>();
   for (int i = 0; i < 8; ++i) {
     const double x = (i == 1 || i == 2 || i == 5 || i == 6) ? 10 : -10;
@@ -50,7 +50,7 @@ Body cube(const std::string& name, Material material, const Vector3& position,
           bool elastic = false) {
   auto model = std::make_shared<BodyModel>();
   model->name = name;
-  model->mesh = cubeMesh();
+  model->mesh = unitCubeMesh();
   model->material = material;
   if (elastic) model->youngs = 1e9;
   Body body;
@@ -103,8 +103,9 @@ TwoCubes tiltedCubes(std::mt19937& random, std::uniform_real_distribution<double
 void expectPositions(const std::vector<Contact>& contacts, std::vector<Vector3> expected) {
   ASSERT_EQ(contacts.size(), expected.size());
   for (const Contact& c : contacts) {
-    auto hit = std::find_if(expected.begin(), expected.end(),
-                            [&](const Vector3& e) { return (c.position1 - e).norm() < kTol; });
+    auto hit = std::find_if(expected.begin(), expected.end(), [&](const Vector3& e) {
+      return (c.position1 - e).norm() < kSearchTolerance;
+    });
     ASSERT_NE(hit, expected.end()) << "unexpected contact at " << c.position1.transpose();
     expected.erase(hit);
   }
@@ -295,16 +296,16 @@ TEST(FindContacts, FacingSquaresAPointOneApart) {
   for (const Contact& c : result.contacts) {
     EXPECT_EQ(c.body1, s.upper);
     EXPECT_EQ(c.body2, s.lower);
-    EXPECT_LT((c.position2 - (c.position1 - Vector3(0, 0, 0.1))).norm(), kTol);
-    EXPECT_LT((c.normal - Vector3::UnitZ()).norm(), kTol) << c.normal.transpose();
-    EXPECT_NEAR(c.distance, 0.1, kTol);
+    EXPECT_LT((c.position2 - (c.position1 - Vector3(0, 0, 0.1))).norm(), kSearchTolerance);
+    EXPECT_LT((c.normal - Vector3::UnitZ()).norm(), kSearchTolerance) << c.normal.transpose();
+    EXPECT_NEAR(c.distance, 0.1, kSearchTolerance);
     // GraspIt!'s static friction table: wood on rubber is 1.0.
     EXPECT_DOUBLE_EQ(c.mu, 1.0);
     EXPECT_EQ(c.model, ContactModel::PointWithFriction);
     // The documented frame for n = +z: x = n x X = +y, y = n x x = -x.
-    EXPECT_LT((c.frame.col(2) - Vector3::UnitZ()).norm(), kTol);
-    EXPECT_LT((c.frame.col(0) - Vector3::UnitY()).norm(), kTol);
-    EXPECT_LT((c.frame.col(1) + Vector3::UnitX()).norm(), kTol);
+    EXPECT_LT((c.frame.col(2) - Vector3::UnitZ()).norm(), kSearchTolerance);
+    EXPECT_LT((c.frame.col(0) - Vector3::UnitY()).norm(), kSearchTolerance);
+    EXPECT_LT((c.frame.col(1) + Vector3::UnitX()).norm(), kSearchTolerance);
   }
 }
 
@@ -316,10 +317,10 @@ TEST(FindContacts, WithoutCompactionEveryContactLiesOnTheFaces) {
   const ContactResult result = findContacts(s.world, s.upper, s.lower, request);
   ASSERT_GE(result.contacts.size(), 4u);
   for (const Contact& c : result.contacts) {
-    EXPECT_NEAR(c.position1.z(), 10.1, kTol);
-    EXPECT_NEAR(c.position2.z(), 10.0, kTol);
-    EXPECT_LE(c.position1.head<2>().cwiseAbs().maxCoeff(), 10 + kTol);
-    EXPECT_NEAR(c.distance, 0.1, kTol);
+    EXPECT_NEAR(c.position1.z(), 10.1, kSearchTolerance);
+    EXPECT_NEAR(c.position2.z(), 10.0, kSearchTolerance);
+    EXPECT_LE(c.position1.head<2>().cwiseAbs().maxCoeff(), 10 + kSearchTolerance);
+    EXPECT_NEAR(c.distance, 0.1, kSearchTolerance);
   }
 }
 
@@ -332,8 +333,8 @@ TEST(FindContacts, ShiftedSquaresCompactToTheirOverlap) {
   expectPositions(result.contacts, {Vector3(-5, -5, 10.1), Vector3(10, -5, 10.1),
                                     Vector3(10, 10, 10.1), Vector3(-5, 10, 10.1)});
   for (const Contact& c : result.contacts) {
-    EXPECT_LT((c.normal - Vector3::UnitZ()).norm(), kTol);
-    EXPECT_NEAR(c.distance, 0.1, kTol);
+    EXPECT_LT((c.normal - Vector3::UnitZ()).norm(), kSearchTolerance);
+    EXPECT_NEAR(c.distance, 0.1, kSearchTolerance);
   }
 }
 
@@ -347,7 +348,7 @@ TEST(FindContacts, BeyondTheThresholdNone) {
   wide.threshold = 0.5;
   const ContactResult found = findContacts(s.world, s.upper, s.lower, wide);
   ASSERT_EQ(found.contacts.size(), 4u);
-  for (const Contact& c : found.contacts) EXPECT_NEAR(c.distance, 0.3, kTol);
+  for (const Contact& c : found.contacts) EXPECT_NEAR(c.distance, 0.3, kSearchTolerance);
 }
 
 // inContact is findContacts' "found any": hand cases, then random tilted poses about the
@@ -448,22 +449,22 @@ TEST(FindContacts, SeenFromTheOtherBodyIsTheMate) {
     const Contact m = c.mate();
     EXPECT_EQ(m.body1, c.body2);
     EXPECT_EQ(m.body2, c.body1);
-    EXPECT_LT((m.position1 - c.position2).norm(), kTol);
-    EXPECT_LT((m.position2 - c.position1).norm(), kTol);
-    EXPECT_LT((m.normal + c.normal).norm(), kTol);
-    EXPECT_LT((m.frame.col(2) + c.normal).norm(), kTol);
+    EXPECT_LT((m.position1 - c.position2).norm(), kSearchTolerance);
+    EXPECT_LT((m.position2 - c.position1).norm(), kSearchTolerance);
+    EXPECT_LT((m.normal + c.normal).norm(), kSearchTolerance);
+    EXPECT_LT((m.frame.col(2) + c.normal).norm(), kSearchTolerance);
     EXPECT_DOUBLE_EQ(m.distance, c.distance);
     EXPECT_DOUBLE_EQ(m.mu, c.mu);
     // From the lower cube: the same contact, normal -z into the lower cube.
     const auto hit =
         std::find_if(from_lower.contacts.begin(), from_lower.contacts.end(), [&](const Contact& d) {
-          return (d.position1 - c.position2).norm() < kTol &&
-                 (d.position2 - c.position1).norm() < kTol;
+          return (d.position1 - c.position2).norm() < kSearchTolerance &&
+                 (d.position2 - c.position1).norm() < kSearchTolerance;
         });
     ASSERT_NE(hit, from_lower.contacts.end()) << c.position1.transpose();
     EXPECT_EQ(hit->body1, s.lower);
-    EXPECT_LT((hit->normal + Vector3::UnitZ()).norm(), kTol);
-    EXPECT_NEAR(hit->distance, 0.1, kTol);
+    EXPECT_LT((hit->normal + Vector3::UnitZ()).norm(), kSearchTolerance);
+    EXPECT_NEAR(hit->distance, 0.1, kSearchTolerance);
   }
 }
 
@@ -476,7 +477,8 @@ TEST(FindContacts, IndependentOfTheBodiesOrderInTheWorld) {
   ASSERT_EQ(ca.size(), cb.size());
   for (const Contact& c : ca) {
     const auto hit = std::find_if(cb.begin(), cb.end(), [&](const Contact& d) {
-      return (d.position1 - c.position1).norm() < kTol && (d.normal - c.normal).norm() < kTol;
+      return (d.position1 - c.position1).norm() < kSearchTolerance &&
+             (d.normal - c.normal).norm() < kSearchTolerance;
     });
     EXPECT_NE(hit, cb.end()) << c.position1.transpose();
   }

@@ -49,7 +49,7 @@ SettledSqueeze settledSqueeze() {
   return out;
 }
 
-double mu() {
+double sharedFriction() {
   return staticFriction(Material::Rubber, Material::Plastic);
 }
 
@@ -75,7 +75,7 @@ TEST(StaticHold, TheSqueezeTouchesTheBoxWithBothPadsOnly) {
   for (const HeldContact& c : s.contacts.onObject) {
     EXPECT_EQ(c.other.kind, BodyRef::Kind::Link);
     EXPECT_NEAR(std::abs(c.normal.x()), 1.0, 1e-6);  // the pads face each other across x
-    EXPECT_NEAR(c.mu, mu(), 1e-12);
+    EXPECT_NEAR(c.mu, sharedFriction(), 1e-12);
     net += c.force;
     pressed += std::abs(c.force.x());
   }
@@ -87,7 +87,7 @@ TEST(StaticHold, TheSqueezeTouchesTheBoxWithBothPadsOnly) {
 
 TEST(StaticHold, FrictionAlongThePadsCarriesUpToMuTimesTheSqueeze) {
   const SettledSqueeze s = settledSqueeze();
-  const double limit = mu() * s.squeeze / s.mass;
+  const double limit = sharedFriction() * s.squeeze / s.mass;
   for (const double sign : {1.0, -1.0}) {
     SCOPED_TRACE(sign);
     EXPECT_TRUE(holds(s, Vector3(0, 0, sign * 0.9 * limit)));
@@ -98,8 +98,8 @@ TEST(StaticHold, FrictionAlongThePadsCarriesUpToMuTimesTheSqueeze) {
 TEST(StaticHold, APullAcrossThePadsIsHeldUpToTheTippingBalance) {
   const SettledSqueeze s = settledSqueeze();
   const double low = 10.0, high = 60.0;
-  const double limit =
-      ((1.0 + mu()) * high - low) / ((1.0 + mu()) * high + low) * s.squeeze / s.mass;
+  const double limit = ((1.0 + sharedFriction()) * high - low) /
+                       ((1.0 + sharedFriction()) * high + low) * s.squeeze / s.mass;
   for (const double sign : {1.0, -1.0}) {
     SCOPED_TRACE(sign);
     EXPECT_TRUE(holds(s, Vector3(sign * 0.9 * limit, 0, 0)));
@@ -109,7 +109,7 @@ TEST(StaticHold, APullAcrossThePadsIsHeldUpToTheTippingBalance) {
 
 TEST(StaticHold, TheLoadFactorScalesThePull) {
   const SettledSqueeze s = settledSqueeze();
-  const double limit = mu() * s.squeeze / s.mass;
+  const double limit = sharedFriction() * s.squeeze / s.mass;
   StaticHoldMargins doubled = kExact;
   doubled.loadFactor = 2.0;
   EXPECT_TRUE(holds(s, Vector3(0, 0, 0.45 * limit), doubled));
@@ -130,7 +130,7 @@ TEST(StaticHold, DisturbingWrenchesAddToThePull) {
   StaticHoldMargins disturbed = kExact;
   disturbed.disturbance = 0.25;
   EXPECT_TRUE(holds(s, Vector3(0, 0, -kStandardGravity), disturbed));
-  const double limit = mu() * s.squeeze / s.mass;
+  const double limit = sharedFriction() * s.squeeze / s.mass;
   EXPECT_TRUE(holds(s, Vector3(0, 0, -0.75 * limit)));
   EXPECT_FALSE(holds(s, Vector3(0, 0, -0.85 * limit), disturbed));
 }
@@ -158,7 +158,7 @@ TEST(StaticHold, ValidationWithStaticsKeepsTheSimulatedLabels) {
     if (world.bodies()[b].name == "box") box = b;
   ASSERT_GE(box, 0);
   const double limit =
-      mu() * world.robot(0).model().dofs[0].maxEffort / world.bodies()[box].model->mass;
+      sharedFriction() * world.robot(0).model().dofs[0].maxEffort / world.bodies()[box].model->mass;
   for (const double share : {0.3, 1.1}) {
     SCOPED_TRACE(share);
     ValidationRequest request;

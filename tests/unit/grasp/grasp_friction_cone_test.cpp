@@ -13,7 +13,7 @@
 namespace graspkit {
 namespace {
 
-constexpr double kTol = 1e-12;
+constexpr double kConeTolerance = 1e-12;
 
 // The latitude of an edge's direction in (fx, fy, tz), in degrees. GraspIt! picks the direction
 // at latitude phi and scales it onto the ellipsoid, which keeps the direction.
@@ -28,18 +28,18 @@ TEST(FrictionCone, PointContactHasEightEdgesEvery45DegreesFromX) {
   for (int k = 0; k < 8; ++k) {
     const Vector6& e = edges[k];
     const double angle = k * M_PI / 4.0;
-    EXPECT_NEAR(e[0], std::cos(angle), kTol) << "edge " << k;
-    EXPECT_NEAR(e[1], std::sin(angle), kTol) << "edge " << k;
+    EXPECT_NEAR(e[0], std::cos(angle), kConeTolerance) << "edge " << k;
+    EXPECT_NEAR(e[1], std::sin(angle), kConeTolerance) << "edge " << k;
     EXPECT_DOUBLE_EQ(e[2], 1.0);  // unit normal force
     EXPECT_EQ(e[3], 0.0);
     EXPECT_EQ(e[4], 0.0);
     EXPECT_EQ(e[5], 0.0);  // no torsion
-    EXPECT_NEAR(std::hypot(e[0], e[1]), 1.0, kTol);
+    EXPECT_NEAR(std::hypot(e[0], e[1]), 1.0, kConeTolerance);
     sum += e;
   }
   // Opposite edges cancel: the tangential parts sum to zero.
-  EXPECT_NEAR(sum[0], 0.0, kTol);
-  EXPECT_NEAR(sum[1], 0.0, kTol);
+  EXPECT_NEAR(sum[0], 0.0, kConeTolerance);
+  EXPECT_NEAR(sum[1], 0.0, kConeTolerance);
   EXPECT_DOUBLE_EQ(sum[2], 8.0);
 }
 
@@ -64,7 +64,7 @@ TEST(FrictionCone, SoftFingerSamplesFiveLatitudesOnTheEllipsoid) {
     for (int j = 0; j < counts[ring]; ++j, ++index) {
       const Vector6& e = edges[index];
       // On the ellipsoid with semi-axes (1, 1, e_tau)...
-      EXPECT_NEAR(e[0] * e[0] + e[1] * e[1] + (e[5] / e_tau) * (e[5] / e_tau), 1.0, kTol);
+      EXPECT_NEAR(e[0] * e[0] + e[1] * e[1] + (e[5] / e_tau) * (e[5] / e_tau), 1.0, kConeTolerance);
       // ...at the ring's latitude...
       EXPECT_NEAR(latitudeDegrees(e), latitudes[ring], 1e-9) << "edge " << index;
       // ...and the ring's j-th longitude, counted from the frame's x axis.
@@ -82,12 +82,12 @@ TEST(FrictionCone, SoftFingerSamplesFiveLatitudesOnTheEllipsoid) {
     EXPECT_NEAR(ring_sum[1], 0.0, 1e-12);
   }
   // The poles are the pure torsion edges +-e_tau.
-  EXPECT_NEAR(edges.front()[5], e_tau, kTol);
-  EXPECT_NEAR(edges.back()[5], -e_tau, kTol);
+  EXPECT_NEAR(edges.front()[5], e_tau, kConeTolerance);
+  EXPECT_NEAR(edges.back()[5], -e_tau, kConeTolerance);
   // The first edge of each 45-degree ring lies in the x-torsion plane.
-  EXPECT_NEAR(edges[1][1], 0.0, kTol);
+  EXPECT_NEAR(edges[1][1], 0.0, kConeTolerance);
   EXPECT_GT(edges[1][0], 0.0);
-  EXPECT_NEAR(edges[14][1], 0.0, kTol);
+  EXPECT_NEAR(edges[14][1], 0.0, kConeTolerance);
   EXPECT_GT(edges[14][0], 0.0);
 }
 
@@ -98,8 +98,8 @@ TEST(FrictionCone, SoftFingerWithoutTorsionKeepsOnlyTheEquator) {
     EXPECT_TRUE(e.allFinite());
     EXPECT_EQ(e[5], 0.0);
   }
-  EXPECT_NEAR(std::hypot(edges[6][0], edges[6][1]), 1.0, kTol);  // equator
-  EXPECT_EQ(std::hypot(edges[1][0], edges[1][1]), 0.0);          // off the equator
+  EXPECT_NEAR(std::hypot(edges[6][0], edges[6][1]), 1.0, kConeTolerance);  // equator
+  EXPECT_EQ(std::hypot(edges[1][0], edges[1][1]), 0.0);                    // off the equator
 }
 
 TEST(FrictionCone, RejectsNegativeTorsion) {
@@ -130,22 +130,24 @@ TEST(ContactFrame, NormalAlongXUsesZInstead) {
   // n x X vanishes for n = +-X; then x = n x Z: (1,0,0) x (0,0,1) = (0,-1,0).
   Matrix3 frame = contactFrame(Vector3::UnitX());
   expectRightHandedFrame(frame, Vector3::UnitX());
-  EXPECT_NEAR((frame.col(0) - Vector3(0, -1, 0)).norm(), 0.0, kTol);
-  EXPECT_NEAR((frame.col(1) - Vector3(0, 0, -1)).norm(), 0.0, kTol);
+  EXPECT_NEAR((frame.col(0) - Vector3(0, -1, 0)).norm(), 0.0, kConeTolerance);
+  EXPECT_NEAR((frame.col(1) - Vector3(0, 0, -1)).norm(), 0.0, kConeTolerance);
 
   frame = contactFrame(-Vector3::UnitX());
   expectRightHandedFrame(frame, -Vector3::UnitX());
-  EXPECT_NEAR((frame.col(0) - Vector3(0, 1, 0)).norm(), 0.0, kTol);
+  EXPECT_NEAR((frame.col(0) - Vector3(0, 1, 0)).norm(), 0.0, kConeTolerance);
 
   // Within GraspIt!'s tolerance (cosine within 1e-9 of 1) the Z branch is taken too...
   const Vector3 near_x = Vector3(1.0, 1e-6, 0.0).normalized();
   frame = contactFrame(near_x);
   expectRightHandedFrame(frame, near_x);
-  EXPECT_NEAR((frame.col(0) - near_x.cross(Vector3::UnitZ()).normalized()).norm(), 0.0, kTol);
+  EXPECT_NEAR((frame.col(0) - near_x.cross(Vector3::UnitZ()).normalized()).norm(), 0.0,
+              kConeTolerance);
   // ...and outside it, n x X.
   const Vector3 off_x = Vector3(1.0, 1e-3, 0.0).normalized();
   frame = contactFrame(off_x);
-  EXPECT_NEAR((frame.col(0) - off_x.cross(Vector3::UnitX()).normalized()).norm(), 0.0, kTol);
+  EXPECT_NEAR((frame.col(0) - off_x.cross(Vector3::UnitX()).normalized()).norm(), 0.0,
+              kConeTolerance);
 }
 
 Contact makeContact(const Vector3& point, const Vector3& normal, double mu,
@@ -193,9 +195,10 @@ TEST(ContactWrenches, NormalAndFrictionPartsOfAPointContact) {
   Vector3 force_sum = Vector3::Zero();
   for (const Vector6& w : wrenches) {
     const Vector3 f = w.head<3>();
-    EXPECT_NEAR(f.dot(c.normal), 1.0, kTol);                                 // unit normal force
-    EXPECT_NEAR((f - c.normal).norm(), mu, kTol);                            // friction of size mu
-    EXPECT_NEAR((w.tail<3>() - r.cross(f) / max_radius).norm(), 0.0, kTol);  // tau = r x f / R
+    EXPECT_NEAR(f.dot(c.normal), 1.0, kConeTolerance);       // unit normal force
+    EXPECT_NEAR((f - c.normal).norm(), mu, kConeTolerance);  // friction of size mu
+    EXPECT_NEAR((w.tail<3>() - r.cross(f) / max_radius).norm(), 0.0,
+                kConeTolerance);  // tau = r x f / R
     force_sum += f;
   }
   EXPECT_NEAR((force_sum - 8.0 * c.normal).norm(), 0.0, 1e-12);
@@ -207,7 +210,7 @@ TEST(ContactWrenches, ZeroFrictionGivesTheNormalAlone) {
   ASSERT_EQ(wrenches.size(), 1u);
   Vector6 expected;
   expected << 0, 0, -1, 0, 0, 0;
-  EXPECT_NEAR((wrenches[0] - expected).norm(), 0.0, kTol);
+  EXPECT_NEAR((wrenches[0] - expected).norm(), 0.0, kConeTolerance);
 }
 
 TEST(ContactWrenches, SoftFingerAddsTorsionAboutTheNormal) {

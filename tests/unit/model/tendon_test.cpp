@@ -17,7 +17,7 @@
 namespace graspkit {
 namespace {
 
-constexpr double kTol = 1e-9;
+constexpr double kTendonTolerance = 1e-9;
 constexpr double kLink0 = 40.0;
 constexpr double kLink1 = 30.0;
 
@@ -74,8 +74,8 @@ TEST(TendonPath, StraightTendonLengthIsTheSumOfItsSegments) {
   // Straight finger: the points are (-20,-5), (20,-5), (60,-5).
   TendonPath path = tendonPath(robot, 0);
   ASSERT_EQ(path.points.size(), 3u);
-  EXPECT_NEAR(path.length, 80.0, kTol);
-  EXPECT_NEAR((path.points[2].world - Vector3(60, -5, 0)).norm(), 0.0, kTol);
+  EXPECT_NEAR(path.length, 80.0, kTendonTolerance);
+  EXPECT_NEAR((path.points[2].world - Vector3(60, -5, 0)).norm(), 0.0, kTendonTolerance);
 
   // Joint 0 at theta, joint 1 straight: the link points rotate about the origin.
   const double theta = -0.4;
@@ -84,9 +84,9 @@ TEST(TendonPath, StraightTendonLengthIsTheSumOfItsSegments) {
   const Vector3 p1(20 * c + 5 * s, 20 * s - 5 * c, 0);
   const Vector3 p2(60 * c + 5 * s, 60 * s - 5 * c, 0);
   path = tendonPath(robot, 0);
-  EXPECT_NEAR(path.length, (p1 - Vector3(-20, -5, 0)).norm() + (p2 - p1).norm(), kTol);
-  EXPECT_NEAR(path.length, (p1 - Vector3(-20, -5, 0)).norm() + 40.0, kTol);
-  EXPECT_NEAR(tendonLength(robot, path), path.length, kTol);
+  EXPECT_NEAR(path.length, (p1 - Vector3(-20, -5, 0)).norm() + (p2 - p1).norm(), kTendonTolerance);
+  EXPECT_NEAR(path.length, (p1 - Vector3(-20, -5, 0)).norm() + 40.0, kTendonTolerance);
+  EXPECT_NEAR(tendonLength(robot, path), path.length, kTendonTolerance);
 }
 
 TEST(TendonStatics, JointTorqueIsMomentArmTimesForce) {
@@ -150,8 +150,8 @@ TEST(TendonWrapping, SegmentCuttingIntoAWrapperIsRoutedOverItsSurface) {
   ASSERT_EQ(path.points.size(), 3u);
   EXPECT_TRUE(path.points[1].isWrapPoint());
   EXPECT_EQ(path.points[1].wrapper, 0);
-  EXPECT_NEAR((path.points[1].world - Vector3(0, 5, 0)).norm(), 0.0, kTol);
-  EXPECT_NEAR(path.length, 2.0 * std::sqrt(40.0 * 40.0 + 3.0 * 3.0), kTol);
+  EXPECT_NEAR((path.points[1].world - Vector3(0, 5, 0)).norm(), 0.0, kTendonTolerance);
+  EXPECT_NEAR(path.length, 2.0 * std::sqrt(40.0 * 40.0 + 3.0 * 3.0), kTendonTolerance);
 }
 
 TEST(TendonWrapping, ExemptionsAndWrapperEndsLeaveTheTendonStraight) {
@@ -160,14 +160,14 @@ TEST(TendonWrapping, ExemptionsAndWrapperEndsLeaveTheTendonStraight) {
   t.insertionPoints = {at(kPalm, -40, 2), at(kPalm, 40, 2)};
   TendonWrapper exempting = cylinder(kPalm, Vector3::Zero());
   exempting.exemptions = {"over"};
-  EXPECT_NEAR(tendonPath(fingerWith({t}, {exempting}), 0).length, 80.0, kTol);
+  EXPECT_NEAR(tendonPath(fingerWith({t}, {exempting}), 0).length, 80.0, kTendonTolerance);
 
   // At z = 8 the segment's closest axis point lies beyond the wrapper's end (|z| <= 5).
   Tendon high = t;
   for (auto& p : high.insertionPoints) p.position.z() = 8.0;
   const TendonPath path = tendonPath(fingerWith({high}, {cylinder(kPalm, Vector3::Zero())}), 0);
   EXPECT_EQ(path.points.size(), 2u);
-  EXPECT_NEAR(path.length, 80.0, kTol);
+  EXPECT_NEAR(path.length, 80.0, kTendonTolerance);
 }
 
 TEST(TendonWrapping, PulleyAtAJointGivesAMomentArmOfItsRadius) {
@@ -179,7 +179,7 @@ TEST(TendonWrapping, PulleyAtAJointGivesAMomentArmOfItsRadius) {
   Robot robot = fingerWith({t}, {cylinder(kLink0Ref, Vector3::Zero())});
   const TendonPath path = tendonPath(robot, 0);
   ASSERT_EQ(path.points.size(), 3u);
-  EXPECT_NEAR((path.points[1].world - Vector3(40, 5, 0)).norm(), 0.0, kTol);
+  EXPECT_NEAR((path.points[1].world - Vector3(40, 5, 0)).norm(), 0.0, kTendonTolerance);
   EXPECT_EQ(path.points[1].link, kLink0Ref);
 
   // The distal point (60,4.5) is pulled towards (40,5): the moment about joint 1 is
@@ -213,10 +213,10 @@ TEST(TendonStatics, RestLengthIsTheFilesOrTheDefaultPostureLength) {
   const double c = std::cos(-0.4), s = std::sin(-0.4);
   const double at_default =
       (Vector3(20 * c + 5 * s, 20 * s - 5 * c, 0) - Vector3(-20, -5, 0)).norm() + 40.0;
-  EXPECT_NEAR(tendonRestLength(robot, 0), at_default, kTol);
+  EXPECT_NEAR(tendonRestLength(robot, 0), at_default, kTendonTolerance);
 
   model->tendons[0].preTensionLength = 3.0;
-  EXPECT_NEAR(tendonRestLength(Robot(model), 0), at_default - 3.0, kTol);
+  EXPECT_NEAR(tendonRestLength(Robot(model), 0), at_default - 3.0, kTendonTolerance);
   model->tendons[0].restLength = 70.0;
   EXPECT_EQ(tendonRestLength(Robot(model), 0), 70.0);
 }

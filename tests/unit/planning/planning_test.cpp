@@ -54,7 +54,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 const double kSqrt3 = std::sqrt(3.0);
-constexpr double kDeg = kPi / 180.0;
+constexpr double kDegree = kPi / 180.0;
 
 // ---------------------------------------------------------------------------------------------
 // Fixtures
@@ -114,8 +114,8 @@ TEST(EigengraspMap, BarrettAmplitudesGiveDofsByHand) {
   const auto hand = barrett();
   // Barrett.xml's joint limits, independently of how the loader turns them into DOF ranges.
   ASSERT_EQ(hand->dofs.size(), 4u);
-  EXPECT_NEAR(hand->dofs[0].max, 180 * kDeg, 1e-12);
-  EXPECT_NEAR(hand->dofs[1].max, 144 * kDeg, 1e-12);
+  EXPECT_NEAR(hand->dofs[0].max, 180 * kDegree, 1e-12);
+  EXPECT_NEAR(hand->dofs[1].max, 144 * kDegree, 1e-12);
   const EigengraspMap map(*hand);
   ASSERT_EQ(map.size(), 2);
   ASSERT_EQ(map.dofCount(), 4);
@@ -155,7 +155,7 @@ TEST(EigengraspMap, BarrettDofsClampToTheirLimits) {
   const EigengraspMap map(*barrett());
   const Eigen::VectorXd high = map.dofs(Eigen::Vector2d(4.0, 4.0));  // 5.13 and 3.1 unclamped
   EXPECT_DOUBLE_EQ(high[0], kPi);
-  for (int d = 1; d < 4; ++d) EXPECT_DOUBLE_EQ(high[d], 144 * kDeg);
+  for (int d = 1; d < 4; ++d) EXPECT_DOUBLE_EQ(high[d], 144 * kDegree);
   const Eigen::VectorXd low = map.dofs(Eigen::Vector2d(-4.0, -4.0));
   for (int d = 0; d < 4; ++d) EXPECT_DOUBLE_EQ(low[d], 0.0);
   // One DOF clamps, the others follow the formula.
@@ -242,8 +242,8 @@ TEST(SearchSpace, VariablesMatchGraspItsTable) {
     const auto v = s.variables();
     // DOF postures: the DOF's range, jump = range / 2.
     EXPECT_NEAR(v[0].jump, kPi / 2, 1e-12);
-    EXPECT_NEAR(v[1].max, 144 * kDeg, 1e-12);
-    EXPECT_NEAR(v[1].jump, 72 * kDeg, 1e-12);
+    EXPECT_NEAR(v[1].max, 144 * kDegree, 1e-12);
+    EXPECT_NEAR(v[1].jump, 72 * kDegree, 1e-12);
     for (int i = 4; i < 7; ++i) {
       EXPECT_EQ(v[i].min, -250);
       EXPECT_EQ(v[i].max, 250);

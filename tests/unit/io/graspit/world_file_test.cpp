@@ -539,7 +539,7 @@ TEST(WorldFile, FilenameResolutionOrder) {
 
 // Runs `body` with the working folder at `folder`, restoring it afterwards.
 template <class F>
-void inFolder(const fs::path& folder, F body) {
+void runInFolder(const fs::path& folder, F body) {
   const fs::path before = fs::current_path();
   fs::current_path(folder);
   try {
@@ -636,7 +636,7 @@ TEST(WorldPaths, ASavedWorldLoadsFromAnyFolderWithoutItsRoot) {
     EXPECT_TRUE(name.starts_with("../../lib/models/")) << name;
   // Loaded with no root, from another working folder, and from the file system's root.
   for (const fs::path& folder : {test::scratchDir(), fs::path("/")}) {
-    inFolder(folder, [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
+    runInFolder(folder, [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
   }
   // A --root that holds other models of the same names changes nothing: ./ and ../ names are
   // the saved file's own.
@@ -663,7 +663,7 @@ TEST(WorldPaths, SavedWhereItSharesNoFolderItNamesModelsAbsolutely) {
                       *fs::weakly_canonical(w.models).relative_path().begin();
   for (const std::string& name : elementTexts(readText(saved), "filename"))
     EXPECT_TRUE(shared ? name.starts_with("../") : fs::path(name).is_absolute()) << name;
-  inFolder("/", [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
+  runInFolder("/", [&] { expectSameWorld(loadWorldFile(saved, hermetic()), world); });
   fs::remove_all(other);
 }
 
@@ -735,7 +735,7 @@ TEST(BodyXml, AMeshBodyWrittenElsewhereNamesItsMeshFromItsOwnFolder) {
   EXPECT_NE(readText(xml).find(">../meshes/cube.off</geometryFile>"), std::string::npos)
       << readText(xml);
   const auto beside = loadBodyFile(top / "meshes" / "cube.off");
-  inFolder("/", [&] {
+  runInFolder("/", [&] {
     const auto body = loadBodyFile(xml);
     EXPECT_EQ(body->mass, 120);
     EXPECT_EQ(body->mesh->triangles.size(), beside->mesh->triangles.size());

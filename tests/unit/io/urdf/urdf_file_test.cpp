@@ -30,7 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path writeFile(const std::string& name, const std::string& text) {
+fs::path writeTestFile(const std::string& name, const std::string& text) {
   const fs::path file = test::scratchDir() / name;
   std::ofstream(file) << text;
   return file;
@@ -47,7 +47,7 @@ Transform origin(const Vector3& xyz_m, const Vector3& rpy = Vector3::Zero()) {
   return t;
 }
 
-Transform rotation(const Vector3& axis, double angle) {
+Transform axisRotation(const Vector3& axis, double angle) {
   Transform t = Transform::Identity();
   t.linear() = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
   return t;
@@ -74,7 +74,7 @@ void expectNear(const Vector3& actual, const Vector3& expected) {
 }
 
 // A link pose is the URDF link frame: position within 1e-6 mm, axes within 1e-9.
-void expectPose(const Transform& actual, const Transform& expected) {
+void expectSamePose(const Transform& actual, const Transform& expected) {
   expectNear(actual.translation(), expected.translation());
   EXPECT_LT((actual.linear() - expected.linear()).norm(), 1e-9) << "\n"
                                                                 << actual.linear() << "\nvs\n"
@@ -109,7 +109,7 @@ const char* kGripper = R"(<?xml version="1.0"?>
 )";
 
 TEST(UrdfFile, GripperSlidesBothFingersOnOneDof) {
-  const auto model = loadUrdfFile(writeFile("gripper.urdf", kGripper));
+  const auto model = loadUrdfFile(writeTestFile("gripper.urdf", kGripper));
   EXPECT_EQ(model->name, "gripper");
   ASSERT_EQ(model->dofs.size(), 1u);
   ASSERT_EQ(model->chains.size(), 2u);
@@ -127,8 +127,8 @@ TEST(UrdfFile, GripperSlidesBothFingersOnOneDof) {
     robot.setDofValues(std::vector<double>{1000.0 * q});
     expectNear(meshCentre(robot, 0, 0), 1000.0 * Vector3(-0.03 + q, 0, 0.03));
     expectNear(meshCentre(robot, 1, 0), 1000.0 * Vector3(0.03 - q, 0, 0.03));
-    expectPose(robot.linkPose(0, 0), origin(Vector3(-0.03 + q, 0, 0.01)));
-    expectPose(robot.linkPose(1, 0), origin(Vector3(0.03 - q, 0, 0.01), Vector3(0, 0, M_PI)));
+    expectSamePose(robot.linkPose(0, 0), origin(Vector3(-0.03 + q, 0, 0.01)));
+    expectSamePose(robot.linkPose(1, 0), origin(Vector3(0.03 - q, 0, 0.01), Vector3(0, 0, M_PI)));
   }
 }
 
@@ -140,7 +140,7 @@ std::string num(double value) {
 }
 
 TEST(UrdfFile, LinksAreRubberUnlessTheOptionsSayOtherwise) {
-  const fs::path file = writeFile("gripper.urdf", kGripper);
+  const fs::path file = writeTestFile("gripper.urdf", kGripper);
   const auto plain = loadUrdfFile(file);
   EXPECT_EQ(plain->palm->material, Material::Rubber);
   EXPECT_EQ(plain->chains[0].links[0].body->material, Material::Rubber);
@@ -191,7 +191,7 @@ std::string threeFingerHand() {
 }
 
 TEST(UrdfFile, ThreeFingerHandFollowsTheUrdfKinematicsWithMimicJoints) {
-  const auto model = loadUrdfFile(writeFile("three_finger.urdf", threeFingerHand()));
+  const auto model = loadUrdfFile(writeTestFile("three_finger.urdf", threeFingerHand()));
   ASSERT_EQ(model->dofs.size(), 3u);
   ASSERT_EQ(model->chains.size(), 3u);
   Robot robot(model);
@@ -204,13 +204,13 @@ TEST(UrdfFile, ThreeFingerHandFollowsTheUrdfKinematicsWithMimicJoints) {
       const double yaw = 2.0 * M_PI * f / 3.0;
       const Transform proximal = origin(Vector3(0.035 * std::cos(yaw), 0.035 * std::sin(yaw), 0.01),
                                         Vector3(0.05, -0.1, yaw)) *
-                                 rotation(Vector3::UnitY(), dof);
+                                 axisRotation(Vector3::UnitY(), dof);
       const Transform distal = proximal * origin(Vector3(0.002, 0, 0.05), Vector3(0, 0.2, 0)) *
-                               rotation(Vector3(0.1, 1, 0.2), 0.5 * dof + 0.2);
+                               axisRotation(Vector3(0.1, 1, 0.2), 0.5 * dof + 0.2);
       expectNear(meshCentre(robot, f, 0), proximal * Vector3(0, 0, 25));
       expectNear(meshCentre(robot, f, 1), distal * Vector3(0, 0, 15));
-      expectPose(robot.linkPose(f, 0), proximal);
-      expectPose(robot.linkPose(f, 1), distal);
+      expectSamePose(robot.linkPose(f, 0), proximal);
+      expectSamePose(robot.linkPose(f, 1), distal);
     }
   }
 }
@@ -218,7 +218,7 @@ TEST(UrdfFile, ThreeFingerHandFollowsTheUrdfKinematicsWithMimicJoints) {
 // A URDF hand written as GraspIt! XML (its link frames baked into the meshes, GraspIt!'s links
 // sitting at their DH frames) puts every vertex of every link where the URDF does.
 TEST(UrdfFile, WrittenAsGraspitXmlTheGeometryStaysPut) {
-  const auto urdf = loadUrdfFile(writeFile("hand.urdf", threeFingerHand()));
+  const auto urdf = loadUrdfFile(writeTestFile("hand.urdf", threeFingerHand()));
   const auto graspit = loadRobotFile(saveRobotFile(*urdf, test::scratchDir()));
   ASSERT_EQ(graspit->chains.size(), urdf->chains.size());
   Robot a(urdf), b(graspit);
@@ -258,7 +258,7 @@ const char* kBranchingPalm = R"(<?xml version="1.0"?>
 )";
 
 TEST(UrdfFile, FixedJointsJoinTheirLinksAndEachBranchIsAChain) {
-  const auto model = loadUrdfFile(writeFile("tree.urdf", kBranchingPalm));
+  const auto model = loadUrdfFile(writeTestFile("tree.urdf", kBranchingPalm));
   ASSERT_EQ(model->chains.size(), 2u);
   ASSERT_EQ(model->dofs.size(), 2u);
   // base (12) + plate (12) + mount_a's sphere (16 bands x 32: 2 x 32 caps + 14 x 64 quads).
@@ -270,13 +270,13 @@ TEST(UrdfFile, FixedJointsJoinTheirLinksAndEachBranchIsAChain) {
     robot.setDofValues(std::vector<double>{q, q});
     const Transform a = origin(Vector3(0, 0, 0.01)) *
                         origin(Vector3(0.025, 0, 0), Vector3(0, 0, M_PI / 2)) *
-                        rotation(Vector3::UnitX(), q);
+                        axisRotation(Vector3::UnitX(), q);
     const Transform b = origin(Vector3(0, 0, 0.01)) * origin(Vector3(-0.025, 0, 0)) *
-                        rotation(-Vector3::UnitY(), q);
+                        axisRotation(-Vector3::UnitY(), q);
     expectNear(meshCentre(robot, 0, 0), a * Vector3(0, 0, 20));
     expectNear(meshCentre(robot, 1, 0), b * Vector3(0, 0, 20));
-    expectPose(robot.linkPose(0, 0), a);
-    expectPose(robot.linkPose(1, 0), b);
+    expectSamePose(robot.linkPose(0, 0), a);
+    expectSamePose(robot.linkPose(1, 0), b);
   }
 }
 
@@ -316,7 +316,7 @@ facet normal 1 1 1
 endfacet
 endsolid tip
 )";
-  const fs::path file = writeFile("packaged.urdf", R"(<?xml version="1.0"?>
+  const fs::path file = writeTestFile("packaged.urdf", R"(<?xml version="1.0"?>
 <robot name="packaged">
   <link name="palm"><collision><geometry><box size="0.02 0.02 0.02"/></geometry></collision></link>
   <link name="tip"><collision><geometry><mesh filename="package://my_hand/meshes/tip.stl" scale="2 2 2"/></geometry></collision></link>
@@ -396,9 +396,10 @@ TEST(UrdfFile, BadFilesNameFileLineAndElement) {
   };
   for (const BadUrdf& bad : cases) {
     SCOPED_TRACE(bad.name);
-    const fs::path file = writeFile(std::string(bad.name) + ".urdf",
-                                    std::string("<?xml version=\"1.0\"?>\n<robot name=\"bad\">\n") +
-                                        links + bad.body + "</robot>\n");
+    const fs::path file =
+        writeTestFile(std::string(bad.name) + ".urdf",
+                      std::string("<?xml version=\"1.0\"?>\n<robot name=\"bad\">\n") + links +
+                          bad.body + "</robot>\n");
     try {
       loadUrdfFile(file);
       ADD_FAILURE() << "loaded";
@@ -440,7 +441,7 @@ TEST(UrdfFile, AMimicJointsOwnLimitsNeverCollapseItsDof) {
   std::vector<Warning> warnings;
   const WarningHandler previous =
       setWarningHandler([&](const Warning& w) { warnings.push_back(w); });
-  const auto model = loadUrdfFile(writeFile("mirror.urdf", text));
+  const auto model = loadUrdfFile(writeTestFile("mirror.urdf", text));
   setWarningHandler(previous);
   ASSERT_EQ(model->dofs.size(), 1u);
   EXPECT_DOUBLE_EQ(model->dofs[0].min, 0.0);
@@ -451,7 +452,8 @@ TEST(UrdfFile, AMimicJointsOwnLimitsNeverCollapseItsDof) {
   // At the DOF's top the mimic stands at -0.548, mirrored.
   Robot robot(model);
   robot.setDofValues(std::vector<double>{0.548});
-  expectPose(robot.linkPose(1, 0), origin({0.03, 0, 0}) * rotation(Vector3::UnitY(), -0.548));
+  expectSamePose(robot.linkPose(1, 0),
+                 origin({0.03, 0, 0}) * axisRotation(Vector3::UnitY(), -0.548));
 }
 
 }  // namespace
@@ -482,7 +484,7 @@ TEST(UrdfFile, AJointCarryingTwoFingersMovesBoth) {
     <origin xyz="-0.01 0 0.03"/><axis xyz="0 1 0"/><limit lower="0" upper="1.5" effort="1" velocity="1"/></joint>
 </robot>
 )";
-  const auto model = loadUrdfFile(writeFile("arch.urdf", text));
+  const auto model = loadUrdfFile(writeTestFile("arch.urdf", text));
   ASSERT_EQ(model->dofs.size(), 4u);  // index, arch, ring, little
   ASSERT_EQ(model->chains.size(), 3u);
   std::map<std::string, LinkRef> links;
@@ -495,14 +497,14 @@ TEST(UrdfFile, AJointCarryingTwoFingersMovesBoth) {
   for (const auto& q :
        {std::vector<double>{0.3, 0.4, 0.2, 1.1}, std::vector<double>{1.0, -0.45, 1.3, 0.1}}) {
     robot.setDofValues(q);
-    const Transform arch = origin({-0.02, 0, 0.02}) * rotation(Vector3::UnitZ(), q[1]);
-    expectPose(robot.linkPose(links.at("index")),
-               origin({0.03, 0, 0.05}) * rotation(Vector3::UnitY(), q[0]));
-    expectPose(robot.linkPose(links.at("arch")), arch);
-    expectPose(robot.linkPose(links.at("ring")),
-               arch * origin({0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[2]));
-    expectPose(robot.linkPose(links.at("little")),
-               arch * origin({-0.01, 0, 0.03}) * rotation(Vector3::UnitY(), q[3]));
+    const Transform arch = origin({-0.02, 0, 0.02}) * axisRotation(Vector3::UnitZ(), q[1]);
+    expectSamePose(robot.linkPose(links.at("index")),
+                   origin({0.03, 0, 0.05}) * axisRotation(Vector3::UnitY(), q[0]));
+    expectSamePose(robot.linkPose(links.at("arch")), arch);
+    expectSamePose(robot.linkPose(links.at("ring")),
+                   arch * origin({0.01, 0, 0.03}) * axisRotation(Vector3::UnitY(), q[2]));
+    expectSamePose(robot.linkPose(links.at("little")),
+                   arch * origin({-0.01, 0, 0.03}) * axisRotation(Vector3::UnitY(), q[3]));
   }
 }
 
@@ -529,14 +531,14 @@ std::string longChain(int links, bool movable) {
 
 TEST(UrdfFile, RobotsPastTheLimitsAreRefusedNamingTheElement) {
   try {
-    loadUrdfFile(writeFile("too_many_links.urdf", longChain(5000, false)));
+    loadUrdfFile(writeTestFile("too_many_links.urdf", longChain(5000, false)));
     ADD_FAILURE() << "loaded";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("more than 4096 links"), std::string::npos) << e.what();
     EXPECT_GT(e.where().line, 4000);
   }
   try {
-    loadUrdfFile(writeFile("too_many_dofs.urdf", longChain(1100, true)));
+    loadUrdfFile(writeTestFile("too_many_dofs.urdf", longChain(1100, true)));
     ADD_FAILURE() << "loaded";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("more than 1024 DOFs"), std::string::npos) << e.what();
@@ -591,7 +593,7 @@ TEST(UrdfFile, NumbersUrdfdomWouldTakeAreCheckedFirst) {
     const std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n" + link_part +
                              "\n<link name=\"f\">" + c.finger + "</link>\n" + j + "\n</robot>\n";
     try {
-      loadUrdfFile(writeFile(std::string(c.name) + ".urdf", text));
+      loadUrdfFile(writeTestFile(std::string(c.name) + ".urdf", text));
       ADD_FAILURE() << "loaded";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
