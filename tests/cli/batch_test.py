@@ -21,7 +21,12 @@ Checks, each against an independent truth (a single uninterrupted run, the body 
     object's mass is its Body XML's, force closure is epsilon >= 1e-6, the object and hand files
     are named from the dataset's folder;
   - a validated batch keeps each direction's result, consistent with the grasp's label and with
-    validation's limits.
+    validation's limits;
+  - a dataset read as frames (validate, export, render): each grasp put back into a world from
+    the file validates again to the batch's figures in every direction, and its glTF scene
+    carries the file's epsilon and contacts; a grasp number out of range, or an object file
+    changed since, is refused;
+  - the load flags that change the hand (--close here) are settings the manifest records.
 """
 
 import json
@@ -386,6 +391,73 @@ if not by_statics:
     fail("statics held no direction of these grasps: --validate-statics was not tried")
 if not json.loads((statics / "manifest.json").read_text())["settings"].get("validate_statics"):
     fail("the manifest does not record --validate-statics")
+# A dataset is what validate, render, export, view and serve read as a plan's grasps: each grasp
+# put back into a world from the file alone. In another process, validation of that world must
+# give the batch's own figures for every direction (the dynamics amplify any difference in a
+# pose or DOF), and each glTF scene must carry the file's epsilon and contact count.
+name = "object_0001_cylinder"
+run = subprocess.run([GRASPKIT, "-q", "validate", str(every / "grasps" / f"{name}.h5"), "--seconds",
+                      "0.25", "--json"], capture_output=True, text=True)
+if run.returncode != 0:
+    fail(f"validate on a dataset failed ({run.returncode}): {run.stdout}{run.stderr}")
+again = json.loads(run.stdout)["grasps"]
+with h5py.File(every / "grasps" / f"{name}.h5", "r") as f:
+    held, slip = f["grasps/validation/held"][()], f["grasps/validation/slip"][()]
+    seconds, labels = f["grasps/validation/seconds"][()], f["grasps/qualities/held"][()]
+if len(again) != len(labels):
+    fail(f"validate saw {len(again)} grasps in a dataset of {len(labels)}")
+for i, grasp in enumerate(again):
+    if grasp["held"] != bool(labels[i]):
+        fail(f"{name} grasp {i}: validated again {grasp['held']}, the dataset says {labels[i]}")
+    for k, d in enumerate(grasp["directions"]):
+        if d["held"] != bool(held[i][k]) or abs(d["slip_mm"] - slip[i][k]) > 1e-9 or \
+                abs(d["seconds"] - seconds[i][k]) > 1e-9:
+            fail(f"{name} grasp {i} direction {k}: validated again {d}, the dataset holds held "
+                 f"{held[i][k]}, slip {slip[i][k]} mm, {seconds[i][k]} s")
+glb = WORK / "dataset.glb"
+run = subprocess.run([GRASPKIT, "-q", "export", str(single / "grasps" / f"{name}.h5"), "--gltf",
+                      str(glb)], capture_output=True, text=True)
+if run.returncode != 0:
+    fail(f"export of a dataset failed ({run.returncode}): {run.stdout}{run.stderr}")
+data = glb.read_bytes()
+gltf = json.loads(data[20:20 + int.from_bytes(data[12:16], "little")])
+with h5py.File(single / "grasps" / f"{name}.h5", "r") as f:
+    epsilon = f["grasps/qualities/epsilon"][()]
+    offsets = f["grasps/contacts/offsets"][()]
+if len(gltf["scenes"]) != len(epsilon):
+    fail(f"the glTF of a dataset of {len(epsilon)} grasps has {len(gltf['scenes'])} scenes")
+for i, scene in enumerate(gltf["scenes"]):
+    extras, count = scene["extras"], int(offsets[i + 1] - offsets[i])
+    if extras["summary"]["epsilon"] != epsilon[i] or extras["summary"]["contacts"] != count or \
+            len(extras["contacts"]) != count:
+        fail(f"glTF scene {i}: {extras['summary']} with {len(extras['contacts'])} contacts; the "
+             f"dataset holds epsilon {epsilon[i]} and {count} contacts")
+# A grasp number past the dataset's end, and an object file changed since the batch, are refused
+# with the file named, not drawn.
+run = subprocess.run([GRASPKIT, "render", str(single / "grasps" / f"{name}.h5"), "--grasp", "4",
+                      "--out", str(WORK / "none.png")], capture_output=True, text=True)
+if run.returncode != 1 or "has 3 grasps" not in run.stderr:
+    fail(f"--grasp 4 of 3 gave exit {run.returncode}: {run.stderr}")
+changed = WORK / "changed"
+shutil.copytree(objects, changed / "objects")
+(changed / "one.txt").write_text(f"objects/{name}.xml\n")
+batch(changed / "one.txt", changed / "out")
+shutil.copy(objects / "object_0000_box.off", changed / "objects" / f"{name}.off")
+run = subprocess.run([GRASPKIT, "render", str(changed / "out" / "grasps" / f"{name}.h5"), "--out",
+                      str(WORK / "none.png")], capture_output=True, text=True)
+if run.returncode != 1 or "changed since" not in run.stderr or f"{name}.h5" not in run.stderr:
+    fail(f"a dataset whose object changed gave exit {run.returncode}: {run.stderr}")
+
+# The load flags that change the hand are settings: a run with another closing direction does not
+# resume into this one's folder, and the manifest records them.
+run = batch(objects, single, "--close", "0=-", check=False)
+if run.returncode != 1 or "other settings" not in run.stderr:
+    fail(f"--close did not count as a setting: exit {run.returncode}: {run.stderr}")
+closing = WORK / "closing"
+batch(WORK / "two.txt", closing, "--close", "0=-")
+if manifest(closing)["settings"].get("hand_options") != {"close": ["0=-"]}:
+    fail(f"the manifest does not record --close: {manifest(closing)['settings']}")
+
 # graspkit.load_dataset in Lua against h5py, on one file.
 name = "object_0001_cylinder"
 script = WORK / "read_dataset.lua"

@@ -58,6 +58,21 @@ const BatchOptions& utf8Checked(const BatchOptions& options) {
   return options;
 }
 
+// The load flags that change the hand itself (its palm, closing directions, materials, switched-off
+// pairs, collision shapes), as given; empty when none is. Roots and package paths only say where
+// files are found, which may differ between the machines that resume one run.
+json handShapingFlags(const LoadFlags& load) {
+  json flags = json::object();
+  if (load.genericRobots) flags["generic_robots"] = true;
+  if (!load.palm.empty()) flags["palm"] = load.palm;
+  if (!load.material.empty()) flags["urdf_material"] = load.material;
+  if (!load.linkMaterials.empty()) flags["link_materials"] = load.linkMaterials;
+  if (!load.closing.empty()) flags["close"] = load.closing;
+  if (!load.srdf.empty()) flags["srdf"] = fs::absolute(load.srdf).lexically_normal().string();
+  if (load.mjcfExactMeshes) flags["mjcf_exact_meshes"] = true;
+  return flags;
+}
+
 // What a dataset depends on: a manifest written with other settings cannot be resumed.
 json settingsJson(const BatchOptions& options) {
   json settings = {{"hand", fs::absolute(options.hand).lexically_normal().string()},
@@ -75,6 +90,8 @@ json settingsJson(const BatchOptions& options) {
     // Only when set, so that manifests written before the flag existed still resume.
     if (options.validateStatics) settings["validate_statics"] = true;
   }
+  // Also only when given: a hand loaded otherwise is another hand.
+  if (json hand = handShapingFlags(options.load); !hand.empty()) settings["hand_options"] = hand;
   return settings;
 }
 

@@ -1,4 +1,4 @@
-// graspkit export: a world, or a plan's grasps, as binary glTF.
+// graspkit export: a world, or a plan's or dataset's grasps, as binary glTF.
 #include <fmt/format.h>
 
 #include "commands/export_command.hpp"
@@ -10,8 +10,10 @@ namespace graspkit::cli {
 
 void addExportCommand(CLI::App& app, ExportOptions& options) {
   CLI::App* cmd = app.add_subcommand(
-      "export", "Write a world, or a plan's grasps (one scene each), as binary glTF (.glb)");
-  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+      "export",
+      "Write a world, or a plan's or dataset's grasps (one scene each), as binary glTF (.glb)");
+  cmd->add_option("input", options.input,
+                  "World XML, a plan's JSON (plan --out) or a grasp dataset (batch's .h5)")
       ->required()
       ->check(existingFile());
   cmd->add_option("--gltf", options.gltf, "The .glb file to write")->required();
@@ -24,7 +26,7 @@ void addExportCommand(CLI::App& app, ExportOptions& options) {
 
 int runExport(const ExportOptions& options, std::ostream& out) {
   const std::vector<SceneFrame> frames =
-      loadFrames({options.input, options.load, true, options.grasp, options.top});
+      loadFrames({options.input, options.load.options(), true, options.grasp, options.top});
   writeFileAtomically(options.gltf, framesGltf(frames));
   out << fmt::format("wrote {} ({} scene{})\n", options.gltf.string(), frames.size(),
                      frames.size() == 1 ? "" : "s");

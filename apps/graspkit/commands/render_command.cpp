@@ -1,4 +1,5 @@
-// graspkit render: a PNG of a world or of a plan's grasps (a contact sheet, or one grasp).
+// graspkit render: a PNG of a world or of a plan's or dataset's grasps (a contact sheet, or one
+// grasp).
 #include <cmath>
 #include <regex>
 
@@ -35,6 +36,8 @@ std::string labelOf(const SceneFrame& frame) {
     label += fmt::format(" eps {:.3g}", s["epsilon"].get<double>());
   if (s.contains("volume") && s["volume"].is_number())
     label += fmt::format(" vol {:.3g}", s["volume"].get<double>());
+  if (s.contains("held") && s["held"].is_boolean())
+    label += s["held"].get<bool>() ? " held" : " let go";
   return label;
 }
 
@@ -73,8 +76,10 @@ ViewCamera chooseCamera(const SceneFrame& frame, const std::string& camera, doub
 
 void addRenderCommand(CLI::App& app, RenderOptions& options) {
   CLI::App* cmd = app.add_subcommand(
-      "render", "Ray-cast a picture (PNG) of a world, or of a plan's grasps as a contact sheet");
-  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+      "render",
+      "Ray-cast a picture (PNG) of a world, or of a plan's or dataset's grasps as a contact sheet");
+  cmd->add_option("input", options.input,
+                  "World XML, a plan's JSON (plan --out) or a grasp dataset (batch's .h5)")
       ->required()
       ->check(existingFile());
   cmd->add_option("--out", options.out, "The PNG to write")->required();
@@ -113,7 +118,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& options) {
 
 int runRender(const RenderOptions& options, std::ostream& out) {
   const auto [width, height] = parseSize(options.size);
-  FrameSource source{options.input, options.load, options.contacts, options.grasp, options.top};
+  FrameSource source{options.input, options.load.options(), options.contacts, options.grasp,
+                     options.top};
   const std::vector<SceneFrame> frames = loadFrames(source);
   // A sheet of 20 full-size tiles would not fit in memory; refuse before drawing any.
   if (static_cast<double>(width) * height * static_cast<double>(frames.size()) > 64e6)

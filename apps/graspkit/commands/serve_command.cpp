@@ -27,11 +27,12 @@ std::vector<std::filesystem::path> readableFolders(const ServeOptions& options) 
 }  // namespace
 
 void addServeCommand(CLI::App& app, ServeOptions& options) {
-  CLI::App* cmd = app.add_subcommand(
-      "serve",
-      "Open a world (or a plan's grasps) in the browser: move the hand, turn its DOFs, "
-      "autograsp, plan, validate, save");
-  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+  CLI::App* cmd = app.add_subcommand("serve",
+                                     "Open a world (or a plan's or dataset's grasps) in the "
+                                     "browser: move the hand, turn its DOFs, "
+                                     "autograsp, plan, validate, save");
+  cmd->add_option("input", options.input,
+                  "World XML, a plan's JSON (plan --out) or a grasp dataset (batch's .h5)")
       ->required()
       ->check(existingFile());
   cmd->add_option("--port", options.port, "Port on 127.0.0.1 (0: any free port)")

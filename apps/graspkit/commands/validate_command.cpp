@@ -1,6 +1,6 @@
 // graspkit validate: label grasps physically. The hand squeezes and the object's weight is turned
-// along each axis direction in turn (grasp_validation.hpp); a world gives one grasp, a plan one
-// per grasp.
+// along each axis direction in turn (grasp_validation.hpp); a world gives one grasp, a plan or a
+// dataset one per grasp.
 
 #include <algorithm>
 #include <thread>
@@ -54,7 +54,9 @@ void addValidateCommand(CLI::App& app, ValidateOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "validate",
       "Label grasps physically: does the hand hold the object's weight in 6 directions?");
-  cmd->add_option("input", options.input, "World XML (the hand closed on the object) or plan JSON")
+  cmd->add_option(
+         "input", options.input,
+         "World XML (the hand closed on the object), plan JSON or a grasp dataset (batch's .h5)")
       ->required()
       ->check(existingFile());
   addLoadFlags(*cmd, options.load);
@@ -78,8 +80,10 @@ int runValidate(const ValidateOptions& options, std::ostream& out) {
   ValidationRequest request;
   request.seconds = options.seconds;
   request.statics = options.statics;
-  const std::vector<SceneFrame> frames = loadFrames(
-      {.input = options.input, .load = options.load, .grasp = options.grasp, .top = options.top});
+  const std::vector<SceneFrame> frames = loadFrames({.input = options.input,
+                                                     .load = options.load.options(),
+                                                     .grasp = options.grasp,
+                                                     .top = options.top});
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = options.threads.value_or(cores);
   if (threads < 1) throw Error(fmt::format("--threads {} is not valid", threads));

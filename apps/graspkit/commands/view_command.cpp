@@ -192,9 +192,11 @@ nlohmann::json trajectoryFrames(const World& start, const std::filesystem::path&
 }  // namespace
 
 void addViewCommand(CLI::App& app, ViewOptions& options) {
-  CLI::App* cmd = app.add_subcommand(
-      "view", "Write one self-contained HTML page to look at a world or a plan's grasps in 3-D");
-  cmd->add_option("input", options.input, "World XML, or a plan's JSON (plan --out)")
+  CLI::App* cmd = app.add_subcommand("view",
+                                     "Write one self-contained HTML page to look at a world or a "
+                                     "plan's or dataset's grasps in 3-D");
+  cmd->add_option("input", options.input,
+                  "World XML, a plan's JSON (plan --out) or a grasp dataset (batch's .h5)")
       ->required()
       ->check(existingFile());
   cmd->add_option("--html", options.html, "The page to write")->required();
@@ -212,7 +214,7 @@ int runView(const ViewOptions& options, std::ostream& out) {
         "graspkit view: this graspkit was built without the web viewer (it needs node and "
         "npm when it is built; see docs/pictures.md)");
   const std::vector<SceneFrame> frames =
-      loadFrames({options.input, options.load, true, 0, options.top});
+      loadFrames({options.input, options.load.options(), true, 0, options.top});
   if (!options.trajectory.empty() && frames.front().fromPlan)
     throw Error("--trajectory plays a simulation back on a world file, not on a plan");
   // Contact markers sized by the object, as render sizes them.

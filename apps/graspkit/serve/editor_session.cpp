@@ -184,10 +184,8 @@ EditorSession::~EditorSession() {
 void EditorSession::open(const std::filesystem::path& input) {
   std::vector<EditorGrasp> grasps;
   host::WorldSession session;
-  if (isPlanFile(input)) {
-    LoadFlags flags;
-    flags.roots = options_.load.roots;
-    std::vector<SceneFrame> frames = loadFrames({input, flags, false, 0, 0});
+  if (isDatasetFile(input) || isPlanFile(input)) {
+    std::vector<SceneFrame> frames = loadFrames({input, options_.load, false, 0, 0});
     session.world = frames.front().world.clone();
     session.file = planWorldFile(input);
     for (SceneFrame& frame : frames) {

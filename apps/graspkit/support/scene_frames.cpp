@@ -1,11 +1,15 @@
 #include "support/scene_frames.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "graspkit/base/error.hpp"
 #include "graspkit/base/input_file.hpp"
+#include "graspkit/dataset/dataset_planning.hpp"
 #include "graspkit/grasp/grasp.hpp"
 #include "graspkit/io/gltf/gltf_file.hpp"
 #include "graspkit/io/graspit/world_file.hpp"
@@ -49,6 +53,15 @@ Transform poseFrom(const json& pose) {
   return makeTransform(translation, *rotation);
 }
 
+// The grasps --grasp and --top choose of `count`, as [first, last) (0-based).
+std::pair<int, int> chosenGrasps(const FrameSource& source, int count, const char* what) {
+  if (source.grasp > count || source.grasp < 0)
+    throw Error(fmt::format("--grasp {}: the {} {} has {} grasps (1 to {})", source.grasp, what,
+                            source.input.string(), count, count));
+  if (source.grasp > 0) return {source.grasp - 1, source.grasp};
+  return {0, source.top > 0 ? std::min(count, source.top) : count};
+}
+
 // A plan without world files: its world, with the hand moved to each grasp's closed posture.
 World graspWorldFromPlan(const World& base, const json& plan, const json& grasp) {
   World world = base.clone();
@@ -76,12 +89,7 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   if (count == 0)
     throw Error(SourceLocation{file.string(), 0, "grasps"},
                 "the plan holds no grasps: nothing to show");
-  if (source.grasp > count || source.grasp < 0)
-    throw Error(fmt::format("--grasp {}: the plan {} has {} grasps (1 to {})", source.grasp,
-                            file.string(), count, count));
-  int first = 0, last = count;
-  if (source.grasp > 0) first = source.grasp - 1, last = source.grasp;
-  if (source.grasp == 0 && source.top > 0) last = std::min(count, source.top);
+  const auto [first, last] = chosenGrasps(source, count, "plan");
   // The plan's file names: since schema 3 relative to the plan file's folder (or absolute);
   // before, as plan was run (the working folder's, else the plan's folder).
   const json& worldName = member(plan, "world", file);
@@ -91,7 +99,7 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   const int schema = version && version->is_number_integer() ? version->get<int>() : 0;
   std::filesystem::path planned = worldName.get<std::string>();
   if (schema >= 3 || !std::filesystem::exists(planned)) planned = file.parent_path() / planned;
-  LoadOptions load = source.load.options();
+  LoadOptions load = source.load;
   // Before schema 3 the worlds plan --out wrote named their models as the planned world did
   // (relative to its root), so that world's folder and its parents are searched after --root.
   // Since, they name them so that they load from anywhere (io/graspit/world_file.hpp).
@@ -133,6 +141,53 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
   return frames;
 }
 
+// A grasp dataset (graspkit batch): each grasp's world as datasetGraspWorld puts it back, the
+// hand over the object at the origin. The grasp is measured again, and must give the epsilon,
+// force closure and contact count the file holds: a hand or object file changed since, or a
+// hand loaded with other options than batch's (--palm, --close, materials), would otherwise
+// show, or validate, a grasp that was never planned.
+std::vector<SceneFrame> datasetFrames(const FrameSource& source) {
+  const std::filesystem::path& file = source.input;
+  const GraspDataset dataset = loadGraspDataset(file);
+  const int count = static_cast<int>(dataset.grasps.size());
+  if (count == 0)
+    throw Error(SourceLocation{file.string(), 0, "grasps"},
+                "the dataset holds no grasps: nothing to show");
+  const auto [first, last] = chosenGrasps(source, count, "dataset");
+  DatasetRequest request;
+  request.hand = dataset.handFile;
+  request.object = dataset.objectFile;
+  request.load = source.load;
+  request.loadedHand = std::make_shared<const World>(loadAnyFile(request.hand, request.load));
+  std::vector<SceneFrame> frames;
+  for (int i = first; i < last; ++i) {
+    const DatasetGrasp& saved = dataset.grasps[static_cast<std::size_t>(i)];
+    SceneFrame frame{
+        fmt::format("grasp {}", i + 1), datasetGraspWorld(request, saved), {}, {}, {}, true};
+    frame.focus = handAndObject(frame.world);
+    const Grasp again = analyzeGrasp(frame.world, 0, BodyRef::body(0));
+    if (again.forceClosure != saved.forceClosure ||
+        !(std::abs(again.epsilon - saved.epsilon) <= 1e-9) ||
+        again.contacts.size() != saved.contactPoints.size())
+      throw Error(SourceLocation{file.string(), 0, fmt::format("grasps[{}]", i)},
+                  fmt::format("grasp {} measures epsilon {:.6g} with {} contacts here, the dataset "
+                              "holds {:.6g} with {}: {} or {} changed since, or batch loaded the "
+                              "hand with other options (its manifest lists them as "
+                              "hand_options): give the same",
+                              i + 1, again.epsilon, again.contacts.size(), saved.epsilon,
+                              saved.contactPoints.size(), dataset.handFile, dataset.objectFile));
+    if (source.contacts) frame.contacts = again.contacts;
+    frame.summary["epsilon"] = saved.epsilon;
+    frame.summary["volume"] = saved.volume;
+    frame.summary["force_closure"] = saved.forceClosure;
+    frame.summary["contacts"] = saved.contactPoints.size();
+    if (saved.held >= 0) frame.summary["held"] = saved.held == 1;
+    frame.summary["rank"] = i + 1;
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
 }  // namespace
 
 std::string frameExtras(const SceneFrame& frame) {
@@ -169,12 +224,20 @@ bool isPlanFile(const std::filesystem::path& file) {
   return c == '{' || c == '[';
 }
 
+bool isDatasetFile(const std::filesystem::path& file) {
+  static constexpr char kSignature[] = "\x89HDF\r\n\x1a\n";
+  std::ifstream in(file, std::ios::binary);
+  char head[8] = {};
+  return in.read(head, 8) && std::equal(head, head + 8, kSignature);
+}
+
 std::vector<SceneFrame> loadFrames(const FrameSource& source) {
+  if (isDatasetFile(source.input)) return datasetFrames(source);
   if (isPlanFile(source.input)) return planFrames(source);
   if (source.grasp > 0)
-    throw Error(
-        fmt::format("--grasp picks a grasp of a plan; {} is a world", source.input.string()));
-  const LoadOptions load = source.load.options();
+    throw Error(fmt::format("--grasp picks a grasp of a plan or a dataset; {} is a world",
+                            source.input.string()));
+  const LoadOptions& load = source.load;
   std::vector<SceneFrame> frames;
   frames.push_back(
       frameOf(source.input.stem().string(), loadWorldFile(source.input, load), source.contacts));
