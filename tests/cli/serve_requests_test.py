@@ -7,7 +7,8 @@ A robot file alone opens as a bare hand: it closes, and plan and validate say th
 
 Every request without the token, or naming another host, is refused (403); malformed bodies,
 bad numbers and indices get 400 with a message; files outside the allowed folders are refused
-(403) and not written, symbolic links included; an oversized body gets 413; none of it changes
+(403) and not written, symbolic links included, and so is a file outside them that a loaded world
+names; an oversized body gets 413; none of it changes
 the world, and the server still answers and stops on SIGTERM. The one allowed save loads back
 with `graspkit grasp` to the DOFs the server shows. ctest runs it under the sanitizers too.
 """
@@ -127,6 +128,20 @@ def main():
         check("a picture outside: 403", status == 403, (status, answer))
         status, answer = act("load", {"file": "/etc/passwd"})
         check("load /etc/passwd: 403", status == 403, (status, answer))
+        # A world inside the folders that names a body outside them: the body is a read too.
+        shutil.copy(SOURCE / "models/objects/box.xml", WORK / "elsewhere/box.xml")
+        shutil.copy(SOURCE / "models/objects/box.iv", WORK / "elsewhere/box.iv")
+        (WORK / "out/names_outside.xml").write_text(
+            "<?xml version='1.0' ?>\n<world>\n  <graspableBody>\n"
+            f"    <filename>{WORK / 'elsewhere/box.xml'}</filename>\n"
+            "    <transform><fullTransform>(+1 +0 +0 +0)[+0 +0 +0]</fullTransform></transform>\n"
+            "  </graspableBody>\n  <robot>\n"
+            f"    <filename>{SOURCE / 'models/robots/bh8/bh8.xml'}</filename>\n"
+            "    <transform><fullTransform>(+1 +0 +0 +0)[+0 +0 +200]</fullTransform></transform>\n"
+            "  </robot>\n</world>\n")
+        status, answer = act("load", {"file": str(WORK / "out/names_outside.xml")})
+        check("load a world naming a body outside: 403 naming it",
+              status == 403 and "elsewhere/box.xml" in answer.get("error", ""), (status, answer))
         status, answer = act("load", {"file": str(WORK / "out/missing.xml")})
         check("load a missing file: 400 naming it", status == 400 and "missing.xml" in answer.get("error", ""),
               (status, answer))

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "graspkit/base/input_file.hpp"
 #include "graspkit/base/output_file.hpp"
 #include "graspkit/collision/collision.hpp"
 #include "graspkit/dynamics/grasp_validation.hpp"
@@ -425,7 +426,24 @@ json EditorSession::load(const json& args) {
   const std::filesystem::path file = checkedPath(args, options_.files, false);
   if (plan_ && !plan_->collected)
     throw RequestError(409, "a plan is running: stop it before loading another world");
-  open(file);  // assigns nothing until the file has loaded
+  // Every file the load reads is held to the same folders, not only the one named: the robots,
+  // bodies and meshes a world names, a plan's worlds, a dataset's hand and object. A refusal
+  // that ends the load is a 403, as for the named file. (Searches ask the guard too, and take a
+  // refused place as empty: only the refusal that reaches here counts.)
+  static constexpr std::string_view kRefused = "not below the folders graspkit serve may read";
+  try {
+    ScopedReadGuard guard([this, &file](const std::filesystem::path& read) {
+      if (options_.files.mayRead(read)) return;
+      throw Error(
+          SourceLocation{read.string()},
+          fmt::format("named by {}, {} (add one with --allow-read)", file.string(), kRefused));
+    });
+    open(file);  // assigns nothing until the file has loaded
+  } catch (const Error& e) {
+    if (std::string_view(e.what()).find(kRefused) != std::string_view::npos)
+      throw RequestError(403, e.what());
+    throw;
+  }
   session_.file = file;
   return state();
 }
