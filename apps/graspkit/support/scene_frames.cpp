@@ -144,8 +144,8 @@ std::vector<SceneFrame> planFrames(const FrameSource& source) {
 // A grasp dataset (graspkit batch): each grasp's world as datasetGraspWorld puts it back, the
 // hand over the object at the origin. The grasp is measured again, and must give the epsilon,
 // force closure and contact count the file holds: a hand or object file changed since, or a
-// hand loaded with other options than batch's (--palm, --close, materials), would otherwise
-// show, or validate, a grasp that was never planned.
+// hand loaded with other options than batch's (--palm, materials, --mjcf-exact-meshes), would
+// otherwise show, or validate, a grasp that was never planned.
 std::vector<SceneFrame> datasetFrames(const FrameSource& source) {
   const std::filesystem::path& file = source.input;
   const GraspDataset dataset = loadGraspDataset(file);
